@@ -1,0 +1,61 @@
+#pragma once
+// The embedding of the render mesh in the control points (Kenwright 2015, equation 1):
+//   phi_ij = 1 / |c_i0 - v_j|^alpha, normalised so that sum_i phi_ij = 1,
+//   v'_j   = v_j + sum_i phi_ij (c_i - c_i0).
+// Weights are computed once ("precompute, then solve"); the per-frame pass only reads them.
+#include <deform/parallel.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace deform {
+
+struct SkinOptions {
+  double alpha = 3.5;         ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
+  std::size_t k_nearest = 8;  ///< influences per vertex; 0 means dense (every control point)
+  unsigned threads = 0;       ///< worker threads for build and deform; 0 = hardware concurrency
+};
+
+/// Weights of every render-mesh vertex: `influences()` slots per vertex, vertex-major, each slot a
+/// control-point index and a weight. Slots past the used ones carry weight 0 (index 0).
+class Skin {
+ public:
+  /// Throws InputError for alpha outside (0, 64], no control points or a non-finite position.
+  static Skin build(const std::vector<Eigen::Vector3f>& vertices_m,
+                    const std::vector<Eigen::Vector3d>& control_rest_m, const SkinOptions& options);
+
+  std::size_t vertexCount() const { return vertex_count_; }
+  std::size_t controlPointCount() const { return control_count_; }
+  std::size_t influences() const { return influences_; }
+  double alpha() const { return alpha_; }
+  const std::vector<uint32_t>& indices() const { return indices_; }
+  const std::vector<float>& weights() const { return weights_; }
+  /// Weight of control point `i` on vertex `j` (0 when not among its influences).
+  float weight(std::size_t j, uint32_t i) const;
+  /// Bytes of the weights and indices.
+  std::size_t memoryBytes() const;
+  /// Bytes one deform pass reads and writes per vertex (rest position, slots, output).
+  std::size_t bytesPerVertex() const;
+
+  /// v'_j = v_j + sum_i phi_ij d_i for every vertex, where d_i = c_i - c_i0 are the control-point
+  /// displacements [m] (controlPointCount() of them). Same result for any thread count.
+  void deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
+              Eigen::Vector3f* out_m, unsigned threads = 0) const;
+
+  /// Same pass restricted to vertices [begin, end).
+  void deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m, Eigen::Vector3f* out_m,
+                   std::size_t begin, std::size_t end) const;
+
+ private:
+  std::size_t vertex_count_ = 0;
+  std::size_t control_count_ = 0;
+  std::size_t influences_ = 0;
+  double alpha_ = 0;
+  std::vector<uint32_t> indices_;
+  std::vector<float> weights_;
+};
+
+
+}  // namespace deform
+

@@ -1,0 +1,31 @@
+// sandbox: the command-line program. Exit codes: 0 done, 2 bad input, 1 failure inside.
+#include "commands.hpp"
+
+#include <deform/error.hpp>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Real-time vehicle deformation sandbox"};
+  app.require_subcommand(1);
+  sandbox::registerMeshCommands(app);
+  sandbox::registerBenchCommands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  } catch (const deform::InputError& e) {
+    std::fprintf(stderr, "sandbox: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sandbox: internal failure: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
