@@ -7,4 +7,9 @@ namespace sandbox {
 void registerMeshCommands(CLI::App& app);
 void registerBenchCommands(CLI::App& app);
 
+/// `sandbox bench step` (deformation dynamics), in bench_step.cpp.
+void registerBenchStepCommand(CLI::App& bench);
+/// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.
+void registerMeshRenderCommand(CLI::App& mesh);
+
 }  // namespace sandbox

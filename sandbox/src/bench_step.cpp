@@ -1,0 +1,7 @@
+#include "commands.hpp"
+
+namespace sandbox {
+
+void registerBenchStepCommand(CLI::App& bench) { (void)bench; }
+
+}  // namespace sandbox
