@@ -57,13 +57,15 @@ void checkMesh(const Mesh& mesh, std::string_view source) {
 
 void appendMesh(Mesh& mesh, const Mesh& part) {
   const auto offset = static_cast<uint32_t>(mesh.positions_m.size());
-  const bool normals = mesh.normals.size() == mesh.positions_m.size() && part.normals.size() == part.positions_m.size();
+  const bool normals =
+      mesh.normals.size() == mesh.positions_m.size() && part.normals.size() == part.positions_m.size();
   mesh.positions_m.insert(mesh.positions_m.end(), part.positions_m.begin(), part.positions_m.end());
   if (normals)
     mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
   else
     mesh.normals.clear();
-  for (const auto& t : part.triangles) mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  for (const auto& t : part.triangles)
+    mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
 }  // namespace deform

@@ -3,6 +3,7 @@
 // (the level of detail). Kenwright 2015, section "Low-Resolution Control Mesh", Figure "Vehicle Convex
 // Hull". Immutable once built; shared by every car that uses it (DESIGN.md section 4).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -17,12 +18,12 @@ struct ControlEdge {
 };
 
 struct ControlMesh {
-  std::vector<Eigen::Vector3d> points_m;         ///< rest positions of the control points [m]
-  std::vector<std::array<uint32_t, 3>> triangles; ///< closed convex surface, outward (CCW) winding
-  std::vector<ControlEdge> edges;                 ///< every edge once, with its two wings
-  Eigen::Vector3d centre_of_mass_m{0, 0, 0};      ///< centroid of the solid hull (uniform density) [m]
-  double volume_m3 = 0;                           ///< volume enclosed by the surface [m^3]
-  std::size_t hull_vertex_count = 0;              ///< vertices of the full convex hull, before LOD
+  std::vector<Eigen::Vector3d> points_m;           ///< rest positions of the control points [m]
+  std::vector<std::array<uint32_t, 3>> triangles;  ///< closed convex surface, outward (CCW) winding
+  std::vector<ControlEdge> edges;                  ///< every edge once, with its two wings
+  Eigen::Vector3d centre_of_mass_m{0, 0, 0};       ///< centroid of the solid hull (uniform density) [m]
+  double volume_m3 = 0;                            ///< volume enclosed by the surface [m^3]
+  std::size_t hull_vertex_count = 0;               ///< vertices of the full convex hull, before LOD
 };
 
 struct ControlMeshStats {
@@ -30,10 +31,17 @@ struct ControlMeshStats {
   double smallest_gap_m = 0;  ///< shortest edge [m]
 };
 
+/// How a hull facet with 4 or more coplanar corners becomes triangles.
+enum class FacetSplit {
+  CentroidFan,  ///< add the facet's centroid as a control point and fan from it (keeps symmetry)
+  Diagonals,    ///< qhull's triangulation: no new points, an arbitrary choice of diagonals
+};
+
 /// Convex hull of `points` (qhull), as a closed triangulated surface with outward winding.
 /// Throws InputError (message starts with `source`) for fewer than 4 distinct points or a flat or
 /// collinear set.
-ControlMesh convexHull(const std::vector<Eigen::Vector3d>& points, const char* source = "mesh");
+ControlMesh convexHull(const std::vector<Eigen::Vector3d>& points, const char* source = "mesh",
+                       FacetSplit split = FacetSplit::CentroidFan);
 
 /// Control mesh with `target_points` control points (4 .. 100,000): the hull simplified
 /// (meshoptimizer, then re-hulled) when the hull has more vertices, refined by longest-edge bisection of

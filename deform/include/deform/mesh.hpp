@@ -1,6 +1,7 @@
 #pragma once
 // The render mesh: the high-resolution surface that follows the control points.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <string_view>

@@ -29,8 +29,13 @@ class Skin {
   std::size_t controlPointCount() const { return control_count_; }
   std::size_t influences() const { return influences_; }
   double alpha() const { return alpha_; }
-  const std::vector<uint32_t>& indices() const { return indices_; }
-  const std::vector<float>& weights() const { return weights_; }
+  /// Control point of slot k of vertex j (0 <= k < influences()).
+  uint32_t slotIndex(std::size_t j, std::size_t k) const {
+    const std::size_t s = j * influences_ + k;
+    return wide_indices_ ? indices32_[s] : indices16_[s];
+  }
+  /// Weight of slot k of vertex j.
+  float slotWeight(std::size_t j, std::size_t k) const { return weights_[j * influences_ + k]; }
   /// Weight of control point `i` on vertex `j` (0 when not among its influences).
   float weight(std::size_t j, uint32_t i) const;
   /// Bytes of the weights and indices.
@@ -40,10 +45,10 @@ class Skin {
 
   /// v'_j = v_j + sum_i phi_ij d_i for every vertex, where d_i = c_i - c_i0 are the control-point
   /// displacements [m] (controlPointCount() of them). Same result for any thread count.
-  void deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
-              Eigen::Vector3f* out_m, unsigned threads = 0) const;
+  void deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m, Eigen::Vector3f* out_m,
+              unsigned threads = 0) const;
 
-  /// Same pass restricted to vertices [begin, end).
+  /// Same pass restricted to vertices [begin, end); displacements packed as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m, Eigen::Vector3f* out_m,
                    std::size_t begin, std::size_t end) const;
 
@@ -52,10 +57,10 @@ class Skin {
   std::size_t control_count_ = 0;
   std::size_t influences_ = 0;
   double alpha_ = 0;
-  std::vector<uint32_t> indices_;
-  std::vector<float> weights_;
+  bool wide_indices_ = false;        ///< more than 65,536 control points: 32-bit indices
+  std::vector<uint16_t> indices16_;  ///< slot indices, vertex-major (narrow form; halves the traffic)
+  std::vector<uint32_t> indices32_;  ///< slot indices, vertex-major (wide form)
+  std::vector<float> weights_;       ///< slot weights, vertex-major; each vertex's sum is 1
 };
 
-
 }  // namespace deform
-

@@ -1,0 +1,58 @@
+// Edges, volume and centre of mass of a closed control surface.
+#include <deform/control_mesh.hpp>
+
+#include <algorithm>
+#include <cassert>
+#include <limits>
+#include <map>
+
+namespace deform {
+
+void finishControlMesh(ControlMesh& mesh) {
+  // Directed half-edge a->b belongs to the triangle whose third vertex is `opposite`.
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> opposite;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      opposite[{a, b}] = t[static_cast<std::size_t>((k + 2) % 3)];
+    }
+  }
+  mesh.edges.clear();
+  for (const auto& [ab, left] : opposite) {
+    auto [a, b] = ab;
+    if (a > b) continue;  // each edge once, from its lower index
+    auto twin = opposite.find({b, a});
+    assert(twin != opposite.end() && "control surface must be closed");
+    mesh.edges.push_back({a, b, left, twin == opposite.end() ? left : twin->second});
+  }
+
+  // Volume and centroid of the solid by a fan of tetrahedra from a reference point (divergence
+  // theorem). The reference is the mean point, so a car far from the origin loses no precision.
+  Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+  for (const auto& p : mesh.points_m) ref += p;
+  if (!mesh.points_m.empty()) ref /= static_cast<double>(mesh.points_m.size());
+  double volume = 0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.points_m[t[0]] - ref, b = mesh.points_m[t[1]] - ref,
+                          c = mesh.points_m[t[2]] - ref;
+    double v = a.dot(b.cross(c)) / 6.0;
+    volume += v;
+    moment += v * (a + b + c) / 4.0;
+  }
+  mesh.volume_m3 = volume;
+  mesh.centre_of_mass_m = volume > 0 ? Eigen::Vector3d(ref + moment / volume) : ref;
+}
+
+ControlMeshStats controlMeshStats(const ControlMesh& mesh) {
+  ControlMeshStats stats;
+  stats.smallest_gap_m = mesh.edges.empty() ? 0 : std::numeric_limits<double>::infinity();
+  for (const auto& e : mesh.edges) {
+    double length = (mesh.points_m[e.a] - mesh.points_m[e.b]).norm();
+    stats.largest_gap_m = std::max(stats.largest_gap_m, length);
+    stats.smallest_gap_m = std::min(stats.smallest_gap_m, length);
+  }
+  return stats;
+}
+
+}  // namespace deform

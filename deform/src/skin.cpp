@@ -1,0 +1,183 @@
+// Building the embedding weights (Kenwright 2015, equation 1) and the per-frame deform pass.
+#include <deform/error.hpp>
+#include <deform/skin.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace deform {
+namespace {
+
+/// Normalised inverse-distance weights for one vertex over the chosen control points.
+/// phi_i = 1/d_i^alpha is evaluated as (d_min/d_i)^alpha, which is 1 for the nearest point and never
+/// overflows, whatever alpha or however close the vertex sits to a control point. A vertex on a control
+/// point (d_min = 0) takes that point alone (shared equally among coincident points).
+void normalisedWeights(const double* distance_m, std::size_t count, double alpha, double* weight) {
+  double d_min = *std::min_element(distance_m, distance_m + count);
+  double sum = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    weight[k] = d_min > 0 ? std::pow(d_min / distance_m[k], alpha) : (distance_m[k] == 0 ? 1.0 : 0.0);
+    sum += weight[k];
+  }
+  for (std::size_t k = 0; k < count; ++k) weight[k] /= sum;  // sum >= 1: the nearest contributes 1
+}
+
+}  // namespace
+
+Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
+                 const std::vector<Eigen::Vector3d>& control_rest_m, const SkinOptions& options) {
+  if (!(options.alpha > 0 && options.alpha <= 64))
+    throw InputError("alpha must be in (0, 64] (got " + std::to_string(options.alpha) + ")");
+  if (control_rest_m.empty()) throw InputError("skin: no control points");
+  for (const auto& c : control_rest_m)
+    if (!c.allFinite()) throw InputError("skin: a control point has a non-finite coordinate");
+  for (const auto& v : vertices_m)
+    if (!v.allFinite()) throw InputError("skin: a vertex has a non-finite coordinate");
+
+  Skin skin;
+  const std::size_t n = control_rest_m.size();
+  skin.vertex_count_ = vertices_m.size();
+  skin.control_count_ = n;
+  skin.alpha_ = options.alpha;
+  skin.influences_ = options.k_nearest == 0 ? n : std::min(options.k_nearest, n);
+  skin.wide_indices_ = n > 65536;
+  const std::size_t slots = skin.vertex_count_ * skin.influences_;
+  (skin.wide_indices_ ? skin.indices32_.resize(slots) : skin.indices16_.resize(slots));
+  skin.weights_.resize(slots);
+
+  const std::size_t K = skin.influences_;
+  parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> distance(n), chosen_distance(K), weight(K);
+    std::vector<uint32_t> order(n);
+    for (std::size_t j = begin; j < end; ++j) {
+      const Eigen::Vector3d v = vertices_m[j].cast<double>();
+      for (std::size_t i = 0; i < n; ++i) distance[i] = (control_rest_m[i] - v).norm();
+      std::iota(order.begin(), order.end(), 0u);
+      // The K nearest, ties to the lower index, then in index order (deterministic, cache-friendly).
+      auto nearer = [&](uint32_t a, uint32_t b) {
+        return distance[a] < distance[b] || (distance[a] == distance[b] && a < b);
+      };
+      if (K < n)
+        std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(K - 1), order.end(),
+                         nearer);
+      std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(K));
+      for (std::size_t k = 0; k < K; ++k) chosen_distance[k] = distance[order[k]];
+      normalisedWeights(chosen_distance.data(), K, options.alpha, weight.data());
+      for (std::size_t k = 0; k < K; ++k) {
+        const std::size_t s = j * K + k;
+        if (skin.wide_indices_)
+          skin.indices32_[s] = order[k];
+        else
+          skin.indices16_[s] = static_cast<uint16_t>(order[k]);
+        skin.weights_[s] = static_cast<float>(weight[k]);
+      }
+    }
+  });
+  return skin;
+}
+
+float Skin::weight(std::size_t j, uint32_t i) const {
+  for (std::size_t k = 0; k < influences_; ++k)
+    if (slotIndex(j, k) == i) return slotWeight(j, k);
+  return 0.0f;
+}
+
+std::size_t Skin::memoryBytes() const {
+  return weights_.size() * sizeof(float) + indices16_.size() * sizeof(uint16_t) +
+         indices32_.size() * sizeof(uint32_t);
+}
+
+std::size_t Skin::bytesPerVertex() const {
+  const std::size_t index_bytes = wide_indices_ ? 4 : 2;
+  return 2 * sizeof(Eigen::Vector3f) + influences_ * (index_bytes + sizeof(float));
+}
+
+void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
+                  Eigen::Vector3f* out_m, unsigned threads) const {
+  // Displacements as x, y, z, 0 floats: one aligned 16-byte load per influence, and the whole table of a
+  // few hundred control points stays in L1.
+  std::vector<float> packed(4 * control_count_);
+  for (std::size_t i = 0; i < control_count_; ++i) {
+    packed[4 * i + 0] = static_cast<float>(displacement_m[i].x());
+    packed[4 * i + 1] = static_cast<float>(displacement_m[i].y());
+    packed[4 * i + 2] = static_cast<float>(displacement_m[i].z());
+    packed[4 * i + 3] = 0.0f;
+  }
+  parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
+    deformRange(rest_m, packed.data(), out_m, begin, end);
+  });
+}
+
+namespace {
+
+/// One vertex, scalar: the reference form of v'_j = v_j + sum_k w_jk d_(i_jk).
+template <class Index>
+inline void deformVertexScalar(const Eigen::Vector3f& rest, const Index* idx, const float* w, std::size_t K,
+                               const float* d, Eigen::Vector3f& out) {
+  float x = rest.x(), y = rest.y(), z = rest.z();
+  for (std::size_t k = 0; k < K; ++k) {
+    const float* di = d + 4 * static_cast<std::size_t>(idx[k]);
+    x += w[k] * di[0];
+    y += w[k] * di[1];
+    z += w[k] * di[2];
+  }
+  out = Eigen::Vector3f(x, y, z);
+}
+
+template <std::size_t KFixed, class Index>
+void deformRangeImpl(const Eigen::Vector3f* rest, const Index* indices, const float* weights,
+                     std::size_t K_runtime, const float* d, Eigen::Vector3f* out, std::size_t begin,
+                     std::size_t end) {
+  const std::size_t K = KFixed ? KFixed : K_runtime;
+  if (begin >= end) return;
+  std::size_t j = begin;
+#if defined(__SSE2__)
+  // 16-byte loads and stores of a 12-byte vertex touch the next vertex's x: the last vertex of the range
+  // is done in scalar form so a neighbouring range (another thread) is never written.
+  for (; j + 1 < end; ++j) {
+    const Index* idx = indices + j * K;
+    const float* w = weights + j * K;
+    __m128 acc = _mm_loadu_ps(rest[j].data());
+    for (std::size_t k = 0; k < K; ++k)
+      acc = _mm_add_ps(acc,
+                       _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
+    _mm_storeu_ps(out[j].data(), acc);
+  }
+#endif
+  for (; j < end; ++j) deformVertexScalar(rest[j], indices + j * K, weights + j * K, K, d, out[j]);
+}
+
+template <class Index>
+void dispatchK(const Eigen::Vector3f* rest, const Index* indices, const float* weights, std::size_t K,
+               const float* d, Eigen::Vector3f* out, std::size_t begin, std::size_t end) {
+  switch (K) {
+    case 4:
+      return deformRangeImpl<4>(rest, indices, weights, K, d, out, begin, end);
+    case 8:
+      return deformRangeImpl<8>(rest, indices, weights, K, d, out, begin, end);
+    case 16:
+      return deformRangeImpl<16>(rest, indices, weights, K, d, out, begin, end);
+    default:
+      return deformRangeImpl<0>(rest, indices, weights, K, d, out, begin, end);
+  }
+}
+
+}  // namespace
+
+void Skin::deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m,
+                       Eigen::Vector3f* out_m, std::size_t begin, std::size_t end) const {
+  if (wide_indices_)
+    dispatchK(rest_m, indices32_.data(), weights_.data(), influences_, displacement_xyz0_m, out_m, begin,
+              end);
+  else
+    dispatchK(rest_m, indices16_.data(), weights_.data(), influences_, displacement_xyz0_m, out_m, begin,
+              end);
+}
+
+}  // namespace deform

@@ -1,0 +1,148 @@
+#include <deform/control_mesh.hpp>
+#include <deform/error.hpp>
+
+#include <catch2/catch.hpp>
+#include <map>
+
+#include "point_sets.hpp"
+
+using deform::ControlMesh;
+
+namespace {
+
+/// Every edge is used once in each direction (closed, consistently wound) and every triangle faces
+/// away from the centre of mass (outward) with every point on or inside every face plane (convex).
+void requireClosedConvexOutward(const ControlMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) directed[{t[k], t[(k + 1) % 3]}]++;
+  for (const auto& [e, uses] : directed) {
+    REQUIRE(uses == 1);
+    REQUIRE(directed.count({e.second, e.first}) == 1);
+  }
+  REQUIRE(mesh.edges.size() * 2 == directed.size());
+  REQUIRE(mesh.volume_m3 > 0);
+  double scale = 0;
+  for (const auto& p : mesh.points_m) scale = std::max(scale, (p - mesh.centre_of_mass_m).norm());
+  double worst_outside = 0, least_outward = 1e300;
+  for (const auto& t : mesh.triangles) {
+    const auto &a = mesh.points_m[t[0]], &b = mesh.points_m[t[1]], &c = mesh.points_m[t[2]];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() == 0) continue;
+    n.normalize();
+    least_outward = std::min(least_outward, n.dot(a - mesh.centre_of_mass_m));
+    for (const auto& p : mesh.points_m) worst_outside = std::max(worst_outside, n.dot(p - a));
+  }
+  REQUIRE(least_outward > 0);
+  REQUIRE(worst_outside <= 1e-9 * scale);
+}
+
+}  // namespace
+
+TEST_CASE("hull of a unit cube with interior points is the cube", "[control_mesh]") {
+  auto points = test_points::cloud(200);
+  for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+  ControlMesh hull = deform::convexHull(points);
+  // Each square face is fanned from its centre (no arbitrary diagonal): 8 corners + 6 face centres.
+  CHECK(hull.hull_vertex_count == 8);
+  CHECK(hull.points_m.size() == 14);
+  CHECK(hull.triangles.size() == 24);
+  CHECK(hull.edges.size() == 36);
+  CHECK(hull.volume_m3 == Approx(1.0).epsilon(1e-12));
+  CHECK(hull.centre_of_mass_m.norm() < 1e-12);
+  requireClosedConvexOutward(hull);
+}
+
+TEST_CASE("control mesh hits the target count within 5 % from 4 to 5000 points", "[control_mesh]") {
+  const auto points = test_points::sphere(1500, {2.4, 0.9, 0.7});  // car-sized ellipsoid
+  for (std::size_t target : {4u, 8u, 30u, 60u, 250u, 1000u, 1499u, 1500u, 2000u, 4000u, 5000u}) {
+    CAPTURE(target);
+    ControlMesh mesh = deform::buildControlMesh(points, target);
+    const double count = static_cast<double>(mesh.points_m.size());
+    CHECK(std::abs(count - static_cast<double>(target)) <= 0.05 * static_cast<double>(target));
+    CHECK(mesh.hull_vertex_count <= 1500);
+    CHECK(mesh.hull_vertex_count >= 1400);
+    requireClosedConvexOutward(mesh);
+  }
+}
+
+TEST_CASE("refined control points spread evenly: the largest gap shrinks as points are added",
+          "[control_mesh]") {
+  // A box has 8 hull vertices; every further point comes from longest-edge bisection.
+  std::vector<Eigen::Vector3d> box;
+  for (int i = 0; i < 8; ++i) box.emplace_back(i & 1 ? 2.4 : -2.4, i & 2 ? 0.9 : -0.9, i & 4 ? 1.4 : 0.0);
+  double previous_gap = 1e9;
+  for (std::size_t target : {8u, 60u, 250u, 1000u, 4000u}) {
+    ControlMesh mesh = deform::buildControlMesh(box, target);
+    CHECK(mesh.points_m.size() == target);
+    auto stats = deform::controlMeshStats(mesh);
+    CHECK(stats.largest_gap_m < previous_gap);
+    // Bisection keeps the spread within a small factor of an ideal even spacing on the surface area.
+    double area = 2 * (4.8 * 1.8 + 4.8 * 1.4 + 1.8 * 1.4);
+    double ideal_gap = std::sqrt(area / static_cast<double>(target) * 2.0 / std::sqrt(3.0));
+    if (target >= 60) CHECK(stats.largest_gap_m < 2.5 * ideal_gap);
+    previous_gap = stats.largest_gap_m;
+    requireClosedConvexOutward(mesh);
+    CHECK(mesh.volume_m3 == Approx(4.8 * 1.8 * 1.4).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("control mesh is deterministic", "[control_mesh]") {
+  const auto points = test_points::cloud(3000, 7);
+  for (std::size_t target : {30u, 2000u}) {
+    ControlMesh a = deform::buildControlMesh(points, target);
+    ControlMesh b = deform::buildControlMesh(points, target);
+    REQUIRE(a.points_m == b.points_m);
+    REQUIRE(a.triangles == b.triangles);
+  }
+}
+
+TEST_CASE("reduced control points lie on the original hull", "[control_mesh]") {
+  const auto points = test_points::cloud(2000, 3);
+  ControlMesh hull = deform::convexHull(points);
+  ControlMesh reduced = deform::buildControlMesh(points, 20);
+  // Every reduced point is on the original hull's surface: inside or on every face plane, on one.
+  for (const auto& p : reduced.points_m) {
+    double highest = -1e300;
+    for (const auto& t : hull.triangles) {
+      const auto &a = hull.points_m[t[0]], &b = hull.points_m[t[1]], &c = hull.points_m[t[2]];
+      highest = std::max(highest, (b - a).cross(c - a).normalized().dot(p - a));
+    }
+    CHECK(std::abs(highest) < 1e-9);
+  }
+  CHECK(reduced.volume_m3 < hull.volume_m3);
+  CHECK(reduced.volume_m3 > 0.5 * hull.volume_m3);
+}
+
+TEST_CASE("degenerate point sets are refused with a message", "[control_mesh]") {
+  using Catch::Matchers::Contains;
+  std::vector<Eigen::Vector3d> three = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  CHECK_THROWS_WITH(deform::convexHull(three, "tri.obj"), Contains("tri.obj") && Contains("at least 4"));
+  std::vector<Eigen::Vector3d> duplicates(50, Eigen::Vector3d(1, 2, 3));
+  CHECK_THROWS_WITH(deform::convexHull(duplicates, "dup"), Contains("at least 4"));
+  std::vector<Eigen::Vector3d> line, flat;
+  for (int i = 0; i < 20; ++i) line.emplace_back(i, 2.0 * i, -i);
+  for (int i = 0; i < 20; ++i) flat.emplace_back(i % 5, i / 5, 0.0);
+  CHECK_THROWS_WITH(deform::convexHull(line, "line"), Contains("collinear"));
+  CHECK_THROWS_WITH(deform::convexHull(flat, "flat"), Contains("flat"));
+  std::vector<Eigen::Vector3d> nan = test_points::cloud(10);
+  nan[3].x() = std::nan("");
+  CHECK_THROWS_WITH(deform::convexHull(nan, "nan"), Contains("non-finite"));
+  CHECK_THROWS_AS(deform::buildControlMesh(test_points::cloud(100), 3), deform::InputError);
+  // The smallest valid input: a tetrahedron.
+  std::vector<Eigen::Vector3d> tet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ControlMesh mesh = deform::buildControlMesh(tet, 4);
+  CHECK(mesh.points_m.size() == 4);
+  CHECK(mesh.volume_m3 == Approx(1.0 / 6.0));
+}
+
+TEST_CASE("a hull far from the origin keeps its precision", "[control_mesh]") {
+  auto points = test_points::sphere(400, {2.4, 0.9, 0.7});
+  ControlMesh near = deform::buildControlMesh(points, 60);
+  const Eigen::Vector3d offset(1e5, -1e5, 50);
+  for (auto& p : points) p += offset;
+  ControlMesh far = deform::buildControlMesh(points, 60);
+  REQUIRE(far.points_m.size() == near.points_m.size());
+  CHECK(far.volume_m3 == Approx(near.volume_m3).epsilon(1e-6));
+  CHECK((far.centre_of_mass_m - offset - near.centre_of_mass_m).norm() < 1e-6);
+}
