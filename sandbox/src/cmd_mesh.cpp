@@ -1,10 +1,67 @@
+#include <deform/error.hpp>
+#include <deform/mesh_import.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
 #include "commands.hpp"
+#include "mesh_options.hpp"
+#include "mesh_report.hpp"
 
 namespace sandbox {
+namespace {
+
+struct MeshInfoFlags {
+  std::string mesh;
+  MeshLoadFlags load;
+  std::size_t control_points = 60;
+  double alpha = 3.5;
+  std::size_t k = 8;
+  double mass_kg = 1500;
+  unsigned threads = 0;
+  bool json = false;
+};
+
+void runMeshInfo(const MeshInfoFlags& flags) {
+  if (flags.control_points < 4) throw deform::InputError("--control-points: must be at least 4");
+  if (!(flags.alpha > 0 && flags.alpha <= 64)) throw deform::InputError("--alpha: must be in (0, 64]");
+  if (flags.k > 65536) throw deform::InputError("--k: at most 65536 (0 means dense)");
+  if (!(std::isfinite(flags.mass_kg) && flags.mass_kg > 0))
+    throw deform::InputError("--mass-kg: must be above zero");
+  const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
+  MeshReportOptions options;
+  options.control_points = flags.control_points;
+  options.vehicle_mass_kg = flags.mass_kg;
+  options.skin = {flags.alpha, flags.k, flags.threads};
+  const auto report = meshReport(model, options);
+  if (flags.json)
+    std::printf("%s\n", report.dump(2).c_str());
+  else
+    std::printf("%s", formatMeshReport(report).c_str());
+}
+
+}  // namespace
 
 void registerMeshCommands(CLI::App& app) {
   auto* mesh = app.add_subcommand("mesh", "Inspect a mesh, its control mesh and its embedding");
   mesh->require_subcommand(1);
+
+  auto flags = std::make_shared<MeshInfoFlags>();
+  auto* info =
+      mesh->add_subcommand("info", "Sizes, convex hull, control mesh, mass split and embedding checks");
+  info->add_option("MESH", flags->mesh, "builtin:sedan[?vertices=N], builtin:can, builtin:box or a mesh file")
+      ->required();
+  flags->load.addTo(*info);
+  info->add_option("--control-points", flags->control_points, "Control points N (level of detail)")
+      ->capture_default_str();
+  info->add_option("--alpha", flags->alpha, "Inverse-distance power of the embedding")->capture_default_str();
+  info->add_option("--k", flags->k, "Influences per vertex (0 = dense)")->capture_default_str();
+  info->add_option("--mass-kg", flags->mass_kg, "Vehicle mass [kg]")->capture_default_str();
+  info->add_option("--threads", flags->threads, "Worker threads (0 = all cores)")->capture_default_str();
+  info->add_flag("--json", flags->json, "Print one JSON object");
+  info->callback([flags] { runMeshInfo(*flags); });
+
   registerMeshRenderCommand(*mesh);
 }
 
