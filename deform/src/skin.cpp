@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
+
 #include <string>
+#include "nearest_points.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -52,29 +55,38 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   skin.weights_.resize(slots);
 
   const std::size_t K = skin.influences_;
+  // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
+  const bool use_tree = K < n && n > 32;
+  std::optional<detail::PointKdTree> tree;
+  if (use_tree) tree.emplace(control_rest_m);
   parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<double> distance(n), chosen_distance(K), weight(K);
-    std::vector<uint32_t> order(n);
+    std::vector<detail::RankedPoint> ranked;
+    std::vector<double> distance(K), weight(K);
+    std::vector<uint32_t> chosen(K);
     for (std::size_t j = begin; j < end; ++j) {
       const Eigen::Vector3d v = vertices_m[j].cast<double>();
-      for (std::size_t i = 0; i < n; ++i) distance[i] = (control_rest_m[i] - v).norm();
-      std::iota(order.begin(), order.end(), 0u);
-      // The K nearest, ties to the lower index, then in index order (deterministic, cache-friendly).
-      auto nearer = [&](uint32_t a, uint32_t b) {
-        return distance[a] < distance[b] || (distance[a] == distance[b] && a < b);
-      };
-      if (K < n)
-        std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(K - 1), order.end(),
-                         nearer);
-      std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(K));
-      for (std::size_t k = 0; k < K; ++k) chosen_distance[k] = distance[order[k]];
-      normalisedWeights(chosen_distance.data(), K, options.alpha, weight.data());
+      if (use_tree) {
+        tree->nearest(v, K, ranked);
+      } else {
+        ranked.clear();
+        for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+        if (K < n)
+          std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(K - 1), ranked.end());
+        ranked.resize(K);
+      }
+      // Slots in index order: deterministic, and the displacement reads walk forward through memory.
+      std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+      for (std::size_t k = 0; k < K; ++k) {
+        chosen[k] = ranked[k].index;
+        distance[k] = std::sqrt(ranked[k].distance2_m2);
+      }
+      normalisedWeights(distance.data(), K, options.alpha, weight.data());
       for (std::size_t k = 0; k < K; ++k) {
         const std::size_t s = j * K + k;
         if (skin.wide_indices_)
-          skin.indices32_[s] = order[k];
+          skin.indices32_[s] = chosen[k];
         else
-          skin.indices16_[s] = static_cast<uint16_t>(order[k]);
+          skin.indices16_[s] = static_cast<uint16_t>(chosen[k]);
         skin.weights_[s] = static_cast<float>(weight[k]);
       }
     }

@@ -155,3 +155,26 @@ TEST_CASE("bad skin options are refused", "[skin]") {
   CHECK_THROWS_AS(deform::Skin::build(f.vertices, f.control, {-2.0, 8, 1}), deform::InputError);
   CHECK_THROWS_AS(deform::Skin::build(f.vertices, {}, {3.5, 8, 1}), deform::InputError);
 }
+
+TEST_CASE("the K nearest found through the tree are the brute-force K nearest", "[skin]") {
+  const auto control = test_points::sphere(700, {2.4, 0.9, 0.7});
+  std::vector<Eigen::Vector3f> vertices;
+  for (const auto& p : test_points::cloud(4000, 5))
+    vertices.push_back(Eigen::Vector3f(5.0f * float(p.x()), 2.0f * float(p.y()), 1.5f * float(p.z())));
+  for (const auto& c : control) vertices.push_back(c.cast<float>());  // exact ties between neighbours
+  const std::size_t K = 8;
+  auto skin = deform::Skin::build(vertices, control, {3.5, K, 2});
+  std::size_t mismatches = 0;
+  for (std::size_t j = 0; j < vertices.size(); ++j) {
+    std::vector<std::pair<double, uint32_t>> all;
+    const Eigen::Vector3d v = vertices[j].cast<double>();
+    for (uint32_t i = 0; i < control.size(); ++i) all.push_back({(control[i] - v).squaredNorm(), i});
+    std::sort(all.begin(), all.end());
+    std::vector<uint32_t> expected, got;
+    for (std::size_t k = 0; k < K; ++k) expected.push_back(all[k].second);
+    for (std::size_t k = 0; k < K; ++k) got.push_back(skin.slotIndex(j, k));
+    std::sort(expected.begin(), expected.end());
+    mismatches += (expected != got);
+  }
+  CHECK(mismatches == 0);
+}
