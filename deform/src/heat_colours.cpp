@@ -7,10 +7,10 @@ namespace deform {
 
 Eigen::Vector3f heatColour(float t) {
   t = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 1.0f;
-  // Four linear segments between five stops, evenly spaced in t.
+  // Four linear segments between five stops, evenly spaced in t; red minus blue never falls.
   static const Eigen::Vector3f stops[5] = {{0.05f, 0.15f, 0.85f},
-                                           {0.0f, 0.75f, 0.9f},
-                                           {0.1f, 0.8f, 0.2f},
+                                           {0.05f, 0.7f, 0.85f},
+                                           {0.15f, 0.8f, 0.2f},
                                            {0.95f, 0.85f, 0.1f},
                                            {0.9f, 0.1f, 0.05f}};
   float x = t * 4.0f;
