@@ -91,6 +91,18 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
       }
     }
   });
+  // Reverse index (counting sort by control point); slots with zero weight influence nothing.
+  skin.influenced_begin_.assign(n + 1, 0);
+  for (std::size_t j = 0; j < skin.vertex_count_; ++j)
+    for (std::size_t k = 0; k < K; ++k)
+      if (skin.slotWeight(j, k) != 0.0f) ++skin.influenced_begin_[skin.slotIndex(j, k) + 1];
+  for (std::size_t i = 0; i < n; ++i) skin.influenced_begin_[i + 1] += skin.influenced_begin_[i];
+  skin.influenced_vertices_.resize(skin.influenced_begin_[n]);
+  std::vector<std::size_t> fill(skin.influenced_begin_.begin(), skin.influenced_begin_.end() - 1);
+  for (std::size_t j = 0; j < skin.vertex_count_; ++j)
+    for (std::size_t k = 0; k < K; ++k)
+      if (skin.slotWeight(j, k) != 0.0f)
+        skin.influenced_vertices_[fill[skin.slotIndex(j, k)]++] = static_cast<uint32_t>(j);
   return skin;
 }
 
@@ -124,6 +136,38 @@ void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displace
   parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
     deformRange(rest_m, packed.data(), out_m, begin, end);
   });
+}
+
+std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
+                              const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m,
+                              unsigned threads) const {
+  std::vector<uint8_t> dirty(vertex_count_, 0);
+  std::size_t influenced = 0;
+  for (std::size_t i = 0; i < control_count_ && i < moved.size(); ++i) {
+    if (!moved[i]) continue;
+    for (std::size_t s = influenced_begin_[i]; s < influenced_begin_[i + 1]; ++s)
+      dirty[influenced_vertices_[s]] = 1;
+    influenced += influenced_begin_[i + 1] - influenced_begin_[i];
+  }
+  if (influenced == 0) return 0;
+  std::vector<float> packed(4 * control_count_);
+  for (std::size_t i = 0; i < control_count_; ++i)
+    for (int a = 0; a < 3; ++a)
+      packed[4 * i + static_cast<std::size_t>(a)] = static_cast<float>(displacement_m[i][a]);
+  std::size_t recomputed = 0;
+  for (uint8_t d : dirty) recomputed += d;
+  parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
+    // Runs of dirty vertices go through the same pass as a full deform, so the results are identical.
+    std::size_t j = begin;
+    while (j < end) {
+      while (j < end && !dirty[j]) ++j;
+      std::size_t run_end = j;
+      while (run_end < end && dirty[run_end]) ++run_end;
+      if (j < run_end) deformRange(rest_m, packed.data(), out_m, j, run_end);
+      j = run_end;
+    }
+  });
+  return recomputed;
 }
 
 namespace {

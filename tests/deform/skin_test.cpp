@@ -178,3 +178,30 @@ TEST_CASE("the K nearest found through the tree are the brute-force K nearest", 
   }
   CHECK(mismatches == 0);
 }
+
+TEST_CASE("a partial update recomputes only influenced vertices and equals a full deform", "[skin]") {
+  Fixture f;
+  auto skin = deform::Skin::build(f.vertices, f.control, {3.5, 8, 2});
+  std::vector<Eigen::Vector3d> before(f.control.size(), Eigen::Vector3d(0.01, 0, 0));
+  auto out = f.deformed(skin, before, 2);
+  std::vector<Eigen::Vector3d> after = before;
+  std::vector<uint8_t> moved(f.control.size(), 0);
+  for (std::size_t i : {3u, 17u, 40u}) {
+    after[i] += Eigen::Vector3d(-0.1, 0.05, 0.2);
+    moved[i] = 1;
+  }
+  std::size_t recomputed = skin.deformMoved(f.vertices.data(), after.data(), moved, out.data(), 2);
+  CHECK(out == f.deformed(skin, after, 1));
+  // Exactly the vertices with a moved point among their influences are recomputed.
+  std::size_t influenced = 0;
+  for (std::size_t j = 0; j < skin.vertexCount(); ++j) {
+    bool any = false;
+    for (std::size_t k = 0; k < skin.influences(); ++k)
+      any |= moved[skin.slotIndex(j, k)] && skin.slotWeight(j, k) != 0;
+    influenced += any;
+  }
+  CHECK(recomputed == influenced);
+  CHECK(recomputed < f.vertices.size() / 2);  // 3 of 60 points with K = 8: about 3 * 8 / 60 of the mesh
+  std::vector<uint8_t> none(f.control.size(), 0);
+  CHECK(skin.deformMoved(f.vertices.data(), after.data(), none, out.data(), 2) == 0);
+}

@@ -48,6 +48,14 @@ class Skin {
   void deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m, Eigen::Vector3f* out_m,
               unsigned threads = 0) const;
 
+  /// Partial update (DESIGN.md section 8: only what moved is recomputed): re-deforms only the vertices
+  /// that a control point flagged in `moved` (one flag per control point) influences, and leaves every
+  /// other vertex of `out_m` as it is. Equal to a full deform() when `out_m` held the previous result and
+  /// `moved` flags every point whose displacement changed since. Returns the vertices recomputed.
+  std::size_t deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
+                          const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m,
+                          unsigned threads = 0) const;
+
   /// Same pass restricted to vertices [begin, end); displacements packed as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m, Eigen::Vector3f* out_m,
                    std::size_t begin, std::size_t end) const;
@@ -61,6 +69,10 @@ class Skin {
   std::vector<uint16_t> indices16_;  ///< slot indices, vertex-major (narrow form; halves the traffic)
   std::vector<uint32_t> indices32_;  ///< slot indices, vertex-major (wide form)
   std::vector<float> weights_;       ///< slot weights, vertex-major; each vertex's sum is 1
+  /// Reverse index for partial updates: the vertices control point i influences are
+  /// influenced_vertices_[influenced_begin_[i] .. influenced_begin_[i + 1]).
+  std::vector<std::size_t> influenced_begin_;
+  std::vector<uint32_t> influenced_vertices_;
 };
 
 }  // namespace deform
