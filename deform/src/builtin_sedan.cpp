@@ -92,10 +92,12 @@ class SedanShape {
   }
 
   /// Half cross-section at x (Y >= 0, unscaled), from the bottom centreline round the side to the top
-  /// centreline: floor, bottom corner, wheel well (when in an arch), side, shoulder, ledge, side glass
-  /// leaning in (tumblehome), roof corner, roof. Over bonnet and boot the glass height is ~0, so the
-  /// same curve reads as a crowned panel.
-  void halfSection(double x, ProfileCurve& curve) const {
+  /// centreline, in three parts whose joints are always vertices so the visible edges stay straight
+  /// lines from station to station: (0) floor, bottom corner and wheel well (when in an arch) out to
+  /// the arch edge; (1) side and shoulder up to the window sill; (2) side glass leaning in
+  /// (tumblehome), roof corner and roof. Over bonnet and boot the glass height is ~0, so part 2 reads
+  /// as a crowned panel.
+  void halfSection(double x, std::array<ProfileCurve, 3>& parts) const {
     const double floor = floor_m(x), belt = belt_m(x), w = half_width_m(x);
     const double top = std::max(top_m(x), belt + 0.005);
     double depth_fraction = 0, arch_z = 0;
@@ -109,18 +111,20 @@ class SedanShape {
     const double glass_top = glass_base - kTumblehome * (glass_h - roof_r);
     constexpr double kQuarter = std::numbers::pi / 2;
 
-    curve.clear();
-    curve.moveTo({0, floor});
-    curve.lineTo({inner_w - kBottomRadius_m, floor});
-    curve.arc({inner_w - kBottomRadius_m, floor + kBottomRadius_m}, kBottomRadius_m, -kQuarter, 0);
-    curve.lineTo({inner_w, well_top});
-    curve.lineTo({w, well_top});
-    curve.lineTo({w, belt - kShoulderRadius_m});
-    curve.arc({w - kShoulderRadius_m, belt - kShoulderRadius_m}, kShoulderRadius_m, 0, kQuarter);
-    curve.lineTo({glass_base, belt});
-    curve.lineTo({glass_top, top - roof_r});
-    curve.arc({glass_top - roof_r, top - roof_r}, roof_r, 0, kQuarter);
-    curve.lineTo({0, top});
+    for (auto& part : parts) part.clear();
+    parts[0].moveTo({0, floor});
+    parts[0].lineTo({inner_w - kBottomRadius_m, floor});
+    parts[0].arc({inner_w - kBottomRadius_m, floor + kBottomRadius_m}, kBottomRadius_m, -kQuarter, 0);
+    parts[0].lineTo({inner_w, well_top});
+    parts[0].lineTo({w, well_top});
+    parts[1].moveTo({w, well_top});
+    parts[1].lineTo({w, belt - kShoulderRadius_m});
+    parts[1].arc({w - kShoulderRadius_m, belt - kShoulderRadius_m}, kShoulderRadius_m, 0, kQuarter);
+    parts[1].lineTo({glass_base, belt});
+    parts[2].moveTo({glass_base, belt});
+    parts[2].lineTo({glass_top, top - roof_r});
+    parts[2].arc({glass_top - roof_r, top - roof_r}, roof_r, 0, kQuarter);
+    parts[2].lineTo({0, top});
   }
 
   /// Points whose motion along x sets how densely stations are placed (see stationPositions).
@@ -190,12 +194,14 @@ void chooseGrid(std::size_t target_vertices, double ring_length_m, double metric
 
 VehicleModel makeSedan(std::size_t target_vertices) {
   const SedanShape shape;
-  ProfileCurve curve;
-  shape.halfSection(-0.3, curve);  // widest and tallest section sets the ring spacing
+  std::array<ProfileCurve, 3> parts;
+  shape.halfSection(-0.3, parts);  // widest and tallest section sets the ring spacing
+  const double part_lengths_m[3] = {parts[0].length_m(), parts[1].length_m(), parts[2].length_m()};
+  const double half_length_m = part_lengths_m[0] + part_lengths_m[1] + part_lengths_m[2];
   double metric_length_m = 0;
   stationPositions(shape, 3, metric_length_m);
   std::size_t ring_size = 8, rings = 1;
-  chooseGrid(target_vertices, 2 * curve.length_m(), metric_length_m, ring_size, rings);
+  chooseGrid(target_vertices, 2 * half_length_m, metric_length_m, ring_size, rings);
   const std::vector<double> xs = stationPositions(shape, rings + 2, metric_length_m);
 
   VehicleModel model;
@@ -205,12 +211,25 @@ VehicleModel makeSedan(std::size_t target_vertices) {
   mesh.positions_m.front() = Eigen::Vector3d(xs.front(), 0, shape.centreZ_m(xs.front())).cast<float>();
   mesh.positions_m.back() = Eigen::Vector3d(xs.back(), 0, shape.centreZ_m(xs.back())).cast<float>();
 
+  // Edges per part in proportion to the reference section, at least one each.
   const std::size_t half = ring_size / 2;
+  std::array<std::size_t, 3> part_edges{};
+  part_edges[0] = std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::llround(static_cast<double>(half) * part_lengths_m[0] / half_length_m)),
+      1, half - 2);
+  part_edges[1] = std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::llround(static_cast<double>(half) * part_lengths_m[1] / half_length_m)),
+      1, half - 1 - part_edges[0]);
+  part_edges[2] = half - part_edges[0] - part_edges[1];
   std::vector<Eigen::Vector2d> points(half + 1);
   for (std::size_t r = 0; r < rings; ++r) {
     const double x = xs[r + 1], s = SedanShape::endScale(x), zc = shape.centreZ_m(x);
-    shape.halfSection(x, curve);
-    curve.sample(half + 1, points.data());
+    shape.halfSection(x, parts);
+    std::size_t first = 0;  // each part's first point is the previous part's last
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      parts[k].sample(part_edges[k] + 1, points.data() + first);
+      first += part_edges[k];
+    }
     // j runs from the bottom centreline up the +Y side to the top (outward = d_j x d_ring, d_ring = +X);
     // the -Y side is the exact negation, so the car is mirror-symmetric to the bit.
     for (std::size_t j = 0; j <= half; ++j) {
