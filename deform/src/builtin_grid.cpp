@@ -93,6 +93,42 @@ void ProfileCurve::sample(std::size_t count, Eigen::Vector2d* out) const {
   out[count - 1] = segments_.back().end;
 }
 
+void samplePolyline(const std::vector<Eigen::Vector2d>& corners, std::size_t count, Eigen::Vector2d* out) {
+  assert(corners.size() >= 2 && count >= 2);
+  const std::size_t segments = corners.size() - 1, edges = count - 1;
+  if (edges < segments) {  // too coarse to keep every corner: even spacing by arc length
+    ProfileCurve curve;
+    curve.moveTo(corners.front());
+    for (std::size_t i = 1; i < corners.size(); ++i) curve.lineTo(corners[i]);
+    curve.sample(count, out);
+    return;
+  }
+  std::vector<double> length_m(segments);
+  double total_m = 0;
+  for (std::size_t i = 0; i < segments; ++i) total_m += length_m[i] = (corners[i + 1] - corners[i]).norm();
+  // One edge per segment, the spare edges by length with the largest remainders rounded up.
+  const std::size_t spare = edges - segments;
+  std::vector<std::size_t> share(segments);
+  std::vector<std::pair<double, std::size_t>> remainder(segments);
+  std::size_t given = 0;
+  for (std::size_t i = 0; i < segments; ++i) {
+    const double exact = static_cast<double>(spare) * length_m[i] / total_m;
+    share[i] = 1 + static_cast<std::size_t>(exact);
+    given += share[i] - 1;
+    remainder[i] = {-(exact - std::floor(exact)), i};
+  }
+  std::sort(remainder.begin(), remainder.end());
+  for (std::size_t k = 0; given < spare; ++k, ++given) ++share[remainder[k].second];
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < segments; ++i) {
+    for (std::size_t k = 0; k < share[i]; ++k) {
+      const double f = static_cast<double>(k) / static_cast<double>(share[i]);
+      out[next++] = corners[i] + f * (corners[i + 1] - corners[i]);
+    }
+  }
+  out[next] = corners.back();
+}
+
 void poleGridTopology(std::size_t rings, std::size_t ring_size, Mesh& mesh) {
   assert(rings >= 1 && ring_size >= 3);
   const std::size_t vertices = rings * ring_size + 2;

@@ -47,6 +47,10 @@ class ProfileCurve {
   Eigen::Vector2d cursor_{0, 0};
 };
 
+/// `count` points along the polyline through `corners`, every corner among them when there are enough
+/// points (so sharp features such as a can's rim stay sharp), the rest spread in proportion to length.
+void samplePolyline(const std::vector<Eigen::Vector2d>& corners, std::size_t count, Eigen::Vector2d* out);
+
 /// Vertex index in a pole grid: the start pole is 0, ring r (0-based) occupies ring_size indices after
 /// it, the end pole is last.
 inline uint32_t ringVertex(std::size_t ring, std::size_t j, std::size_t ring_size) {

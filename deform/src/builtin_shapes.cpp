@@ -36,7 +36,7 @@ Mesh revolve(const std::vector<Eigen::Vector2d>& profile, std::size_t target_ver
   Mesh mesh;
   builtin::poleGridTopology(rings, segments, mesh);
   std::vector<Eigen::Vector2d> points(rings + 2);
-  curve.sample(rings + 2, points.data());
+  builtin::samplePolyline(profile, rings + 2, points.data());
   mesh.positions_m.front() = place(0.0, points.front().y(), 0.0);
   mesh.positions_m.back() = place(0.0, points.back().y(), 0.0);
   for (std::size_t r = 0; r < rings; ++r) {
