@@ -266,6 +266,66 @@ TEST_CASE("DAE: <unit> is applied once and <up_axis> picks the default axes", "[
   CHECK(deform::boundingBox(turned.body).size_m().isApprox(Eigen::Vector3d(2, 3, 1), 1e-6));
 }
 
+TEST_CASE("FBX: UpAxis, FrontAxis and UnitScaleFactor from the file are applied", "[import]") {
+  // A tetrahedron 1 x 2 x 3 file units along x, y, z; Z up, front -Y, 100 cm per unit (metres).
+  const std::string fbx = R"(; FBX 7.4.0 project file
+FBXHeaderExtension:  {
+	FBXHeaderVersion: 1003
+	FBXVersion: 7400
+}
+GlobalSettings:  {
+	Version: 1000
+	Properties70:  {
+		P: "UpAxis", "int", "Integer", "",2
+		P: "UpAxisSign", "int", "Integer", "",1
+		P: "FrontAxis", "int", "Integer", "",1
+		P: "FrontAxisSign", "int", "Integer", "",-1
+		P: "CoordAxis", "int", "Integer", "",0
+		P: "CoordAxisSign", "int", "Integer", "",1
+		P: "UnitScaleFactor", "double", "Number", "",100
+	}
+}
+Objects:  {
+	Geometry: 1000, "Geometry::tet", "Mesh" {
+		Vertices: *12 {
+			a: 0,0,0,1,0,0,0,2,0,0,0,3
+		}
+		PolygonVertexIndex: *12 {
+			a: 0,2,-2,0,1,-4,0,3,-3,1,2,-4
+		}
+		GeometryVersion: 124
+	}
+	Model: 2000, "Model::tet", "Mesh" {
+		Version: 232
+	}
+}
+Connections:  {
+	C: "OO",2000,0
+	C: "OO",1000,2000
+}
+)";
+  TempDir dir;
+  ImportReport report;
+  const deform::VehicleModel model = deform::loadVehicleModel(dir.write("tet.fbx", fbx), {}, report);
+  CHECK(report.format == "FBX");
+  CHECK(report.up == Axis::PosZ);
+  CHECK(report.forward == Axis::NegY);
+  CHECK(report.file_unit_m == Approx(1.0));
+  CHECK(report.raw_vertices == 12);  // assimp unshares FBX polygon corners; welding shares them again
+  CHECK(model.body.positions_m.size() == 4);
+  // Forward -Y: file y (2 m) runs backwards along vehicle X; left = up x forward = +X in the file.
+  const deform::Aabb box = deform::boundingBox(model.body);
+  CHECK(box.size_m().isApprox(Eigen::Vector3d(2, 1, 3), 1e-6));
+  CHECK(box.min_m.x() == Approx(-2.0));
+  CHECK(signedVolume(model.body) == Approx(1.0));
+  // scale multiplies on top of the declared unit.
+  ImportOptions half;
+  half.scale = 0.5;
+  CHECK(deform::boundingBox(deform::loadVehicleModel(dir.write("tet2.fbx", fbx), half).body)
+            .size_m()
+            .isApprox(Eigen::Vector3d(1, 0.5, 1.5), 1e-6));
+}
+
 TEST_CASE("loadVehicleModel refuses bad input with one message naming the file and the problem", "[import]") {
   TempDir dir;
   const auto expectError = [](const std::string& path, const ImportOptions& options,
