@@ -189,6 +189,31 @@ TEST_CASE("sedan wheels sit in the arches without touching the body", "[builtin]
   CHECK(steered == 2);
 }
 
+TEST_CASE("sedan surface stays out of the tyres at coarse and fine resolution", "[builtin]") {
+  for (std::size_t wanted : {1000u, 20000u}) {
+    const VehicleModel car = makeSedan(wanted);
+    std::size_t inside = 0;  // points sampled over every triangle that lie inside a tyre
+    for (const WheelPart& wheel : car.wheels) {
+      for (const auto& t : car.body.triangles) {
+        const Eigen::Vector3d a = car.body.positions_m[t[0]].cast<double>(),
+                              b = car.body.positions_m[t[1]].cast<double>(),
+                              c = car.body.positions_m[t[2]].cast<double>();
+        if ((a - wheel.centre_m).norm() > 1.0) continue;  // triangles are far smaller than 0.7 m
+        constexpr int kSteps = 8;
+        for (int i = 0; i <= kSteps; ++i) {
+          for (int j = 0; i + j <= kSteps; ++j) {
+            const Eigen::Vector3d d =
+                a + (b - a) * (i / double{kSteps}) + (c - a) * (j / double{kSteps}) - wheel.centre_m;
+            if (std::abs(d.y()) < wheel.width_m / 2 && std::hypot(d.x(), d.z()) < wheel.radius_m) ++inside;
+          }
+        }
+      }
+    }
+    INFO(wanted << " vertices");
+    CHECK(inside == 0);
+  }
+}
+
 TEST_CASE("coarsest built-ins are still closed and outward", "[builtin]") {
   const VehicleModel car = makeSedan(100);
   requireClosedOutward(car.body);
