@@ -1,0 +1,115 @@
+#pragma once
+// One car in a World: an ODE rigid chassis (mass and inertia of its hull, collision shape its control
+// mesh as an ODE convex geom) driven by forces at its wheels (tyre_model.hpp). Made by World::addCar;
+// lives as long as its World.
+#include <vehicle/driver_input.hpp>
+#include <vehicle/obstacle_shape.hpp>
+#include <vehicle/pose.hpp>
+#include <vehicle/tyre_model.hpp>
+#include <vehicle/vehicle_settings.hpp>
+
+#include <deform/control_mesh.hpp>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+struct dxBody;
+struct dxGeom;
+struct dxSpace;
+struct dxWorld;
+
+namespace vehicle {
+
+/// What a wheel is doing, for the renderer (turning, steering, riding wheels) and for metrics.
+struct WheelState {
+  double steer_angle_rad = 0;                ///< angle about the chassis Z axis, + turns left [rad]
+  double rotation_rad = 0;                   ///< rolling angle about the axle, in [0, 2 pi) [rad]
+  TyreState tyre;                            ///< spin [rad/s] and tread deflections
+  double compression_m = 0;                  ///< suspension compression from full extension [m]
+  double normal_load_N = 0;                  ///< suspension force pressing the tyre on the ground [N]
+  bool in_contact = false;                   ///< the suspension ray hit something within its length
+  bool sliding = false;                      ///< the tyre is at its friction limit
+  bool locked = false;                       ///< brakes hold the wheel still
+  double slip_ratio = 0;                     ///< kappa' [-]
+  double slip_angle_rad = 0;                 ///< alpha' [rad]
+  Eigen::Vector3d contact_point_m{0, 0, 0};  ///< where the tyre touches (world) [m]
+  Eigen::Vector3d contact_normal{0, 0, 1};   ///< surface normal there (world)
+  Eigen::Vector3d force_N{0, 0, 0};          ///< total force of this wheel on the chassis (world) [N]
+};
+
+class Car {
+ public:
+  Car(const Car&) = delete;
+  Car& operator=(const Car&) = delete;
+  ~Car();
+
+  const VehicleSettings& settings() const { return settings_; }
+  /// The wheels as driven (settings, model or bounding box), vehicle frame.
+  const std::vector<WheelSettings>& wheelSettings() const { return wheel_settings_; }
+
+  /// Pedals and steering from now on (clamped to their ranges).
+  void setInput(const DriverInput& input);
+  const DriverInput& input() const { return input_; }
+
+  double mass_kg() const { return settings_.mass_kg; }
+  /// Inertia about the centre of mass in the chassis axes [kg m^2].
+  const Eigen::Matrix3d& inertia_kg_m2() const { return inertia_kg_m2_; }
+  /// Centre of mass in the vehicle (mesh) frame [m]: the chassis body's origin.
+  const Eigen::Vector3d& centreOfMass_m() const { return centre_of_mass_m_; }
+
+  /// Pose of the chassis body (origin at the centre of mass).
+  Pose bodyPose() const;
+  /// Pose of the vehicle frame (the mesh's coordinates): where to draw the mesh, and the frame the
+  /// deformation state lives in.
+  Pose vehiclePose() const;
+  Eigen::Vector3d velocity_mps() const;           ///< of the centre of mass (world) [m/s]
+  Eigen::Vector3d angularVelocity_rad_s() const;  ///< (world) [rad/s]
+  double forwardSpeed_mps() const;                ///< velocity along the chassis X axis [m/s]
+
+  const std::vector<WheelState>& wheels() const { return wheels_; }
+  /// World pose of wheel `i`'s hub: steering about the chassis Z, rolling about the axle (Y), riding
+  /// on its suspension.
+  Pose wheelPose(std::size_t i) const;
+  /// Current bicycle-model steering angle of the front axle [rad].
+  double steerAngle_rad() const { return steer_rad_; }
+  /// Wheelbase and front track the Ackermann geometry uses [m].
+  double wheelbase_m() const { return wheelbase_m_; }
+  double track_m() const { return track_m_; }
+
+  /// The collision hull in the vehicle frame (the control mesh it was built from).
+  const deform::ControlMesh& collisionHull() const { return hull_; }
+  /// Replaces the collision shape (e.g. by the crushed rest shape) without touching mass or inertia.
+  void setCollisionHull(const deform::ControlMesh& hull);
+  /// The chassis shape in the world, for other cars' crush queries (Convex).
+  ObstacleShape shape() const;
+
+ private:
+  friend class World;
+  struct ConvexGeom;
+  Car(dxWorld* world, dxSpace* space, void* geom_data, const deform::ControlMesh& hull,
+      const VehicleSettings& settings, std::vector<WheelSettings> wheels, const Pose& vehicle_pose,
+      const Eigen::Vector3d& velocity_mps);
+  /// Steering, engine, wheels (ray, suspension, tyre) and drag forces for a step of dt_s.
+  void applyForces(double dt_s);
+  void appendState(std::vector<double>& out) const;
+
+  VehicleSettings settings_;
+  std::vector<WheelSettings> wheel_settings_;
+  std::vector<Eigen::Vector3d> mount_body_m_;  ///< suspension mounts, body frame [m]
+  deform::ControlMesh hull_;
+  Eigen::Vector3d centre_of_mass_m_{0, 0, 0};
+  Eigen::Matrix3d inertia_kg_m2_ = Eigen::Matrix3d::Identity();
+  double wheelbase_m_ = 0, track_m_ = 0;
+
+  DriverInput input_;
+  double steer_rad_ = 0;
+  std::vector<WheelState> wheels_;
+
+  dxSpace* space_ = nullptr;
+  dxBody* body_ = nullptr;
+  dxGeom* ray_ = nullptr;
+  std::unique_ptr<ConvexGeom> convex_;
+};
+
+}  // namespace vehicle

@@ -1,0 +1,155 @@
+#pragma once
+// The ODE world (double precision) with its cars and obstacles, stepped at a fixed physics rate.
+// Deterministic: the same calls give bit-identical states (stateHash), whatever else the process did
+// (ODE's solver shuffles with a global seed; each World keeps its own).
+#include <vehicle/car.hpp>
+#include <vehicle/obstacle_shape.hpp>
+#include <vehicle/pose.hpp>
+#include <vehicle/vehicle_settings.hpp>
+
+#include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
+#include <deform/mesh.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace vehicle {
+
+struct WorldSettings {
+  double physics_rate_hz = 500;  ///< fixed steps per second (240-2000 typical; 50 .. 20,000 accepted) [Hz]
+  Eigen::Vector3d gravity_mps2{0, 0, -9.81};  ///< [m/s^2]
+  int solver_iterations = 20;                 ///< ODE quick-step iterations per step [-]
+  double contact_erp = 0.2;                   ///< share of a contact's penetration corrected per step [-]
+  double contact_cfm = 1e-6;                  ///< contact constraint force mixing (softness) [m/N per step]
+  int max_contacts_per_pair = 8;              ///< contact points kept per touching geom pair [-]
+  bool ground = true;                         ///< add a ground plane at z = 0 (obstacle 0)
+  double ground_friction = 1.0;  ///< its friction for bodies sliding on it (tyres use their own mu) [-]
+};
+
+using CarId = uint32_t;
+using ObstacleId = uint32_t;
+
+enum class ObstacleKind : uint8_t {
+  Ground,      ///< a plane (HalfSpace)
+  Wall,        ///< a static box
+  Post,        ///< a static vertical cylinder or capsule
+  Vegetation,  ///< a thin, light, free cylinder standing on its end: knocked over when hit
+  Ramp,        ///< a static wedge, rising along its local +X
+  ConvexMesh,  ///< the convex hull of a mesh (e.g. a jersey barrier), static or free
+};
+
+enum class PostShape : uint8_t { Cylinder, Capsule };
+
+/// A car or an obstacle.
+struct EntityRef {
+  enum class Kind : uint8_t { Car, Obstacle } kind = Kind::Obstacle;
+  uint32_t index = 0;
+  bool operator==(const EntityRef&) const = default;
+};
+
+/// One contact point of the last step (ODE's convention: moving `a` along `normal` by depth_m
+/// separates the two).
+struct ContactPoint {
+  EntityRef a, b;
+  Eigen::Vector3d position_m{0, 0, 0};  ///< world [m]
+  Eigen::Vector3d normal{0, 0, 1};      ///< unit, world, pointing from b into a
+  double depth_m = 0;                   ///< penetration [m]
+};
+
+/// Where a car starts.
+struct CarStart {
+  /// With on_ground: the ground point under the vehicle frame's origin (the car is lifted so its tyres
+  /// touch at design ride height). Without: the vehicle frame's origin itself [m].
+  Eigen::Vector3d position_m{0, 0, 0};
+  double heading_rad = 0;  ///< about the world Z axis; 0 faces +X [rad]
+  double speed_mps = 0;    ///< initial forward speed, wheels rolling with it [m/s]
+  bool on_ground = true;
+};
+
+class World {
+ public:
+  /// Throws deform::InputError naming the field for a rate or iteration count out of range.
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const WorldSettings& settings() const;
+
+  /// A car whose chassis is `model`'s body: collision hull buildControlMesh(vertices,
+  /// settings.collision_points), mass settings.mass_kg over the solid hull; wheels from settings, the
+  /// model's wheels or its bounding box (wheelsFromModel).
+  CarId addCar(const deform::VehicleModel& model, const VehicleSettings& settings = {},
+               const CarStart& start = {});
+  /// A car with the given collision hull (vehicle frame); wheels from settings or the hull's bounding box.
+  CarId addCar(const deform::ControlMesh& hull, const VehicleSettings& settings = {},
+               const CarStart& start = {});
+  /// A car whose chassis is a box of settings.box_size_m (no mesh needed).
+  CarId addBoxCar(const VehicleSettings& settings = {}, const CarStart& start = {});
+
+  std::size_t carCount() const;
+  Car& car(CarId id);
+  const Car& car(CarId id) const;
+
+  /// A plane at height_m (normal +Z). Sizes and frictions below must be finite and positive, else
+  /// deform::InputError naming the field.
+  ObstacleId addGround(double height_m = 0, double friction = 1.0);
+  /// A static box of `size_m` centred at `pose`.
+  ObstacleId addWall(const Pose& pose, const Eigen::Vector3d& size_m, double friction = 0.6);
+  /// A static vertical post standing on `base_m` (capsule: height includes the caps).
+  ObstacleId addPost(const Eigen::Vector3d& base_m, double radius_m, double height_m,
+                     PostShape shape = PostShape::Cylinder, double friction = 0.6);
+  /// A free upright cylinder (a small tree, a bush, a sign) standing on `base_m`.
+  ObstacleId addVegetation(const Eigen::Vector3d& base_m, double radius_m, double height_m, double mass_kg,
+                           double friction = 0.8);
+  /// A static wedge: `foot` is the middle of its low edge on the ground, it rises along the foot's +X
+  /// to height_m at length_m; width_m across.
+  ObstacleId addRamp(const Pose& foot, double length_m, double width_m, double height_m,
+                     double friction = 1.0);
+  /// The convex hull of `mesh` (vehicle-frame coordinates of e.g. loadVehicleModel's body) placed at
+  /// `pose`; mass_kg 0 is static, else a free body of uniform density.
+  ObstacleId addConvexMesh(const deform::Mesh& mesh, const Pose& pose, double mass_kg = 0,
+                           double friction = 0.6);
+
+  std::size_t obstacleCount() const;
+  ObstacleKind obstacleKind(ObstacleId id) const;
+  bool obstacleIsDynamic(ObstacleId id) const;
+  /// Pose of the obstacle's own frame (its shape's local coordinates) now.
+  Pose obstaclePose(ObstacleId id) const;
+  /// The obstacle's shape in the world now (for the crush coupling: transformShape it into a car's
+  /// vehicle frame, query supportPoint or pointPenetration).
+  ObstacleShape obstacleShape(ObstacleId id) const;
+  /// Obstacle or car shape in the world.
+  ObstacleShape shapeOf(EntityRef entity) const;
+
+  /// One fixed step of 1 / physics_rate_hz: wheel forces of every car, collisions, ODE quick step.
+  void step();
+  /// As many fixed steps as fit into the time accumulated so far plus dt_s; returns how many. Throws
+  /// deform::InputError naming "dt_s" for zero, negative or non-finite dt_s.
+  int advance(double dt_s);
+  double fixedDt_s() const;
+  double time_s() const;
+  uint64_t stepCount() const;
+
+  /// Contacts between bodies (chassis, obstacles) found in the last step.
+  const std::vector<ContactPoint>& contacts() const;
+
+  /// FNV-1a (64 bit) over the bytes of every body's position, orientation, linear and angular velocity
+  /// and every wheel's state, in creation order.
+  uint64_t stateHash() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Messages (warnings) ODE printed since the program started; tests expect none.
+std::size_t engineMessageCount();
+
+/// FNV-1a 64-bit hash of raw bytes, continuing from `hash`.
+uint64_t fnv1a(const void* data, std::size_t bytes, uint64_t hash = 14695981039346656037ull);
+
+}  // namespace vehicle

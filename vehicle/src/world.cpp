@@ -1,0 +1,497 @@
+// The ODE world: cars, obstacles, collisions and the fixed-rate step.
+#include <vehicle/mass_properties.hpp>
+#include <vehicle/world.hpp>
+
+#include "ode_support.hpp"
+
+#include <deform/error.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <string>
+
+namespace vehicle {
+namespace {
+
+std::atomic<std::size_t> g_engine_messages{0};
+
+void countingMessageHandler(int errnum, const char* msg, va_list ap) {
+  ++g_engine_messages;
+  std::fprintf(stderr, "ODE message %d: ", errnum);
+  std::vfprintf(stderr, msg, ap);
+  std::fprintf(stderr, "\n");
+}
+
+void installHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] { dSetMessageHandler(countingMessageHandler); });
+}
+
+constexpr uint32_t kCarKind = 0, kObstacleKind = 1;
+
+std::string fieldMessage(const char* field, const std::string& rule, double value) {
+  return std::string(field) + ": " + rule + " (got " + std::to_string(value) + ")";
+}
+void requirePositive(double value, const char* field) {
+  if (!(std::isfinite(value) && value > 0))
+    throw deform::InputError(fieldMessage(field, "must be finite and positive", value));
+}
+void requireNonNegative(double value, const char* field) {
+  if (!(std::isfinite(value) && value >= 0))
+    throw deform::InputError(fieldMessage(field, "must be finite and not negative", value));
+}
+void requireFinite(const Eigen::Vector3d& v, const char* field) {
+  if (!v.allFinite()) throw deform::InputError(std::string(field) + ": must be finite");
+}
+void requireFinite(const Pose& pose, const char* field) {
+  if (!pose.position_m.allFinite() || !pose.orientation.coeffs().allFinite() ||
+      std::abs(pose.orientation.norm() - 1.0) > 1e-6)
+    throw deform::InputError(std::string(field) + ": must be finite with a unit quaternion");
+}
+
+/// The 12 triangles of an axis-aligned box centred at `centre_m`, outward.
+deform::ControlMesh boxHull(const Eigen::Vector3d& size_m, const Eigen::Vector3d& centre_m) {
+  deform::ControlMesh hull;
+  for (int i = 0; i < 8; ++i)
+    hull.points_m.push_back(centre_m + 0.5 * Eigen::Vector3d((i & 1) ? size_m.x() : -size_m.x(),
+                                                             (i & 2) ? size_m.y() : -size_m.y(),
+                                                             (i & 4) ? size_m.z() : -size_m.z()));
+  // Corner index bits: x = 1, y = 2, z = 4. Faces counter-clockwise seen from outside.
+  const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    hull.triangles.push_back({f[0], f[1], f[2]});
+    hull.triangles.push_back({f[0], f[2], f[3]});
+  }
+  return hull;
+}
+
+}  // namespace
+
+uint64_t fnv1a(const void* data, std::size_t bytes, uint64_t hash) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) {
+    hash ^= p[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::size_t engineMessageCount() {
+  return g_engine_messages.load();
+}
+
+struct ObstacleEntry {
+  ObstacleKind kind = ObstacleKind::Wall;
+  dGeomID geom = nullptr;
+  dBodyID body = nullptr;
+  ObstacleShape local;                      ///< shape in the geom's frame (world for the ground)
+  std::unique_ptr<ode::ConvexData> convex;  ///< what a convex geom points into
+  double friction = 0.6;
+};
+
+struct World::Impl {
+  WorldSettings settings;
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;
+  dJointGroupID contact_joints = nullptr;
+  std::vector<std::unique_ptr<Car>> cars;
+  std::vector<ObstacleEntry> obstacles;
+  std::vector<ContactPoint> contacts;
+  std::vector<dContact> scratch;
+  unsigned long random_seed = 0;  ///< ODE's quick-step shuffle seed, owned by this world
+  double time_s = 0, accumulator_s = 0;
+  uint64_t steps = 0;
+
+  double frictionOf(dGeomID geom) const {
+    uint32_t kind = 0, index = 0;
+    if (!ode::unpackEntity(dGeomGetData(geom), kind, index)) return 0.6;
+    return kind == kCarKind ? cars[index]->settings().body_friction : obstacles[index].friction;
+  }
+  static EntityRef entityOf(dGeomID geom) {
+    uint32_t kind = 0, index = 0;
+    ode::unpackEntity(dGeomGetData(geom), kind, index);
+    return {kind == kCarKind ? EntityRef::Kind::Car : EntityRef::Kind::Obstacle, index};
+  }
+
+  static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
+    auto* self = static_cast<Impl*>(data);
+    dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+    if (b1 == nullptr && b2 == nullptr) return;
+    if (b1 == b2) return;
+    const int found =
+        dCollide(g1, g2, static_cast<int>(self->scratch.size()), &self->scratch[0].geom, sizeof(dContact));
+    const double mu = std::sqrt(self->frictionOf(g1) * self->frictionOf(g2));
+    for (int i = 0; i < found; ++i) {
+      dContact& c = self->scratch[static_cast<std::size_t>(i)];
+      c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+      c.surface.mu = mu;
+      c.surface.soft_erp = self->settings.contact_erp;
+      c.surface.soft_cfm = self->settings.contact_cfm;
+      dJointID joint = dJointCreateContact(self->world, self->contact_joints, &c);
+      dJointAttach(joint, b1, b2);
+      self->contacts.push_back(
+          {entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal), c.geom.depth});
+    }
+  }
+
+  ObstacleId addObstacle(ObstacleEntry entry) {
+    const auto id = static_cast<ObstacleId>(obstacles.size());
+    dGeomSetData(entry.geom, ode::packEntity(kObstacleKind, id));
+    obstacles.push_back(std::move(entry));
+    return id;
+  }
+
+  /// A convex geom (static, or on a new body of `mass_kg`) for a hull given in a frame at `pose`.
+  ObstacleId addConvex(ObstacleKind kind, const deform::ControlMesh& hull, const Pose& pose, double mass_kg,
+                       double friction) {
+    const SolidProperties solid = solidProperties(hull.points_m, hull.triangles, "obstacle hull");
+    ObstacleEntry entry;
+    entry.kind = kind;
+    entry.friction = friction;
+    entry.local.type = ShapeType::Convex;
+    for (const auto& p : hull.points_m) entry.local.vertices_m.push_back(p - solid.centroid_m);
+    entry.local.centre_m.setZero();
+    entry.convex =
+        std::make_unique<ode::ConvexData>(ode::makeConvexData(entry.local.vertices_m, hull.triangles));
+    const ode::ConvexData& d = *entry.convex;
+    entry.geom = dCreateConvex(space, d.planes.data(), d.face_count, d.points.data(), d.point_count,
+                               d.polygons.data());
+    const Pose placed{pose.toWorld(solid.centroid_m), pose.orientation};
+    if (mass_kg > 0) {
+      entry.body = dBodyCreate(world);
+      dMass mass;
+      dMassSetZero(&mass);
+      mass.mass = mass_kg;
+      const Eigen::Matrix3d inertia = mass_kg * solid.inertia_per_kg;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) mass.I[4 * r + c] = inertia(r, c);
+      dBodySetMass(entry.body, &mass);
+      dGeomSetBody(entry.geom, entry.body);
+      ode::setBodyPose(entry.body, placed);
+    } else {
+      ode::setGeomPose(entry.geom, placed);
+    }
+    return addObstacle(std::move(entry));
+  }
+
+  CarId addCar(const deform::ControlMesh& hull, const VehicleSettings& car_settings,
+               std::vector<WheelSettings> wheels, const CarStart& start) {
+    checkVehicleSettings(car_settings);
+    if (wheels.size() < 3)
+      throw deform::InputError("vehicle: wheels: a car needs at least 3 (got " +
+                               std::to_string(wheels.size()) + ")");
+    requireFinite(start.position_m, "start.position_m");
+    if (!std::isfinite(start.heading_rad)) throw deform::InputError("start.heading_rad: must be finite");
+    if (!std::isfinite(start.speed_mps)) throw deform::InputError("start.speed_mps: must be finite");
+    Eigen::Vector3d origin = start.position_m;
+    if (start.on_ground) {
+      double lowest = 1e300;
+      for (const auto& w : wheels) lowest = std::min(lowest, w.centre_m.z() - w.radius_m);
+      origin.z() -= lowest;
+    }
+    const Pose pose = Pose::yawed(origin, start.heading_rad);
+    const Eigen::Vector3d velocity = start.speed_mps * (pose.orientation * Eigen::Vector3d::UnitX());
+    const auto id = static_cast<CarId>(cars.size());
+    cars.push_back(std::unique_ptr<Car>(new Car(world, space, ode::packEntity(kCarKind, id), hull,
+                                                car_settings, std::move(wheels), pose, velocity)));
+    return id;
+  }
+};
+
+World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
+  if (!(std::isfinite(settings.physics_rate_hz) && settings.physics_rate_hz >= 50 &&
+        settings.physics_rate_hz <= 20000))
+    throw deform::InputError(
+        fieldMessage("physics_rate_hz", "must be between 50 and 20000", settings.physics_rate_hz));
+  if (settings.solver_iterations < 1 || settings.solver_iterations > 1000)
+    throw deform::InputError(
+        fieldMessage("solver_iterations", "must be between 1 and 1000", settings.solver_iterations));
+  requireFinite(settings.gravity_mps2, "gravity_mps2");
+  requirePositive(settings.contact_erp, "contact_erp");
+  requireNonNegative(settings.contact_cfm, "contact_cfm");
+  if (settings.max_contacts_per_pair < 1 || settings.max_contacts_per_pair > 64)
+    throw deform::InputError(
+        fieldMessage("max_contacts_per_pair", "must be between 1 and 64", settings.max_contacts_per_pair));
+  installHandlers();
+  dInitODE2(0);
+  dAllocateODEDataForThread(dAllocateMaskAll);
+  Impl& m = *impl_;
+  m.settings = settings;
+  m.world = dWorldCreate();
+  m.space = dSimpleSpaceCreate(nullptr);  // pairs in insertion order: deterministic
+  m.contact_joints = dJointGroupCreate(0);
+  m.scratch.resize(static_cast<std::size_t>(settings.max_contacts_per_pair));
+  dWorldSetGravity(m.world, settings.gravity_mps2.x(), settings.gravity_mps2.y(), settings.gravity_mps2.z());
+  dWorldSetERP(m.world, settings.contact_erp);
+  dWorldSetCFM(m.world, settings.contact_cfm);
+  dWorldSetQuickStepNumIterations(m.world, settings.solver_iterations);
+  dWorldSetContactSurfaceLayer(m.world, 0.001);
+  dWorldSetContactMaxCorrectingVel(m.world, 5.0);
+  if (settings.ground) addGround(0.0, settings.ground_friction);
+}
+
+World::~World() {
+  Impl& m = *impl_;
+  m.cars.clear();
+  for (auto& o : m.obstacles) {
+    dGeomDestroy(o.geom);
+    if (o.body) dBodyDestroy(o.body);
+  }
+  m.obstacles.clear();
+  dJointGroupDestroy(m.contact_joints);
+  dSpaceDestroy(m.space);
+  dWorldDestroy(m.world);
+  dCloseODE();
+}
+
+const WorldSettings& World::settings() const {
+  return impl_->settings;
+}
+
+CarId World::addCar(const deform::VehicleModel& model, const VehicleSettings& settings,
+                    const CarStart& start) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(model.body.positions_m.size());
+  for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
+  const std::string source = model.source.empty() ? "vehicle model" : model.source;
+  const deform::ControlMesh hull =
+      deform::buildControlMesh(points, settings.collision_points, source.c_str());
+  return impl_->addCar(hull, settings, wheelsFromModel(settings, model), start);
+}
+
+CarId World::addCar(const deform::ControlMesh& hull, const VehicleSettings& settings, const CarStart& start) {
+  std::vector<WheelSettings> wheels = settings.wheels;
+  if (wheels.empty()) {
+    deform::Aabb box{hull.points_m.front(), hull.points_m.front()};
+    for (const auto& p : hull.points_m) {
+      box.min_m = box.min_m.cwiseMin(p);
+      box.max_m = box.max_m.cwiseMax(p);
+    }
+    wheels = wheelsFromBoundingBox(box);
+  }
+  if (hull.points_m.size() < 4) throw deform::InputError("vehicle hull: needs at least 4 points");
+  return impl_->addCar(hull, settings, std::move(wheels), start);
+}
+
+CarId World::addBoxCar(const VehicleSettings& settings, const CarStart& start) {
+  checkVehicleSettings(settings);
+  const Eigen::Vector3d size = settings.box_size_m;
+  return addCar(boxHull(size, Eigen::Vector3d(0, 0, 0.5 * size.z())), settings, start);
+}
+
+std::size_t World::carCount() const {
+  return impl_->cars.size();
+}
+Car& World::car(CarId id) {
+  return *impl_->cars.at(id);
+}
+const Car& World::car(CarId id) const {
+  return *impl_->cars.at(id);
+}
+
+ObstacleId World::addGround(double height_m, double friction) {
+  if (!std::isfinite(height_m)) throw deform::InputError("ground.height_m: must be finite");
+  requireNonNegative(friction, "ground.friction");
+  ObstacleEntry entry;
+  entry.kind = ObstacleKind::Ground;
+  entry.friction = friction;
+  entry.geom = dCreatePlane(impl_->space, 0, 0, 1, height_m);
+  entry.local.type = ShapeType::HalfSpace;
+  entry.local.normal = Eigen::Vector3d::UnitZ();
+  entry.local.offset_m = height_m;
+  return impl_->addObstacle(std::move(entry));
+}
+
+ObstacleId World::addWall(const Pose& pose, const Eigen::Vector3d& size_m, double friction) {
+  requireFinite(pose, "wall.pose");
+  for (int i = 0; i < 3; ++i) requirePositive(size_m[i], "wall.size_m");
+  requireNonNegative(friction, "wall.friction");
+  ObstacleEntry entry;
+  entry.kind = ObstacleKind::Wall;
+  entry.friction = friction;
+  entry.geom = dCreateBox(impl_->space, size_m.x(), size_m.y(), size_m.z());
+  ode::setGeomPose(entry.geom, pose);
+  entry.local.type = ShapeType::Box;
+  entry.local.half_extents_m = 0.5 * size_m;
+  return impl_->addObstacle(std::move(entry));
+}
+
+ObstacleId World::addPost(const Eigen::Vector3d& base_m, double radius_m, double height_m, PostShape shape,
+                          double friction) {
+  requireFinite(base_m, "post.base_m");
+  requirePositive(radius_m, "post.radius_m");
+  requirePositive(height_m, "post.height_m");
+  requireNonNegative(friction, "post.friction");
+  ObstacleEntry entry;
+  entry.kind = ObstacleKind::Post;
+  entry.friction = friction;
+  entry.local.radius_m = radius_m;
+  if (shape == PostShape::Capsule) {
+    if (!(height_m > 2 * radius_m))
+      throw deform::InputError("post.height_m: a capsule must be taller than its diameter");
+    entry.geom = dCreateCapsule(impl_->space, radius_m, height_m - 2 * radius_m);
+    entry.local.type = ShapeType::Capsule;
+    entry.local.a_m = {0, 0, -(0.5 * height_m - radius_m)};
+    entry.local.b_m = {0, 0, 0.5 * height_m - radius_m};
+  } else {
+    entry.geom = dCreateCylinder(impl_->space, radius_m, height_m);
+    entry.local.type = ShapeType::Cylinder;
+    entry.local.a_m = {0, 0, -0.5 * height_m};
+    entry.local.b_m = {0, 0, 0.5 * height_m};
+  }
+  ode::setGeomPose(entry.geom,
+                   {base_m + Eigen::Vector3d(0, 0, 0.5 * height_m), Eigen::Quaterniond::Identity()});
+  return impl_->addObstacle(std::move(entry));
+}
+
+ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, double height_m,
+                                double mass_kg, double friction) {
+  requireFinite(base_m, "vegetation.base_m");
+  requirePositive(radius_m, "vegetation.radius_m");
+  requirePositive(height_m, "vegetation.height_m");
+  requirePositive(mass_kg, "vegetation.mass_kg");
+  requireNonNegative(friction, "vegetation.friction");
+  ObstacleEntry entry;
+  entry.kind = ObstacleKind::Vegetation;
+  entry.friction = friction;
+  entry.geom = dCreateCylinder(impl_->space, radius_m, height_m);
+  entry.body = dBodyCreate(impl_->world);
+  dMass mass;
+  dMassSetCylinderTotal(&mass, mass_kg, 3, radius_m, height_m);
+  dBodySetMass(entry.body, &mass);
+  dGeomSetBody(entry.geom, entry.body);
+  ode::setBodyPose(entry.body,
+                   {base_m + Eigen::Vector3d(0, 0, 0.5 * height_m), Eigen::Quaterniond::Identity()});
+  entry.local.type = ShapeType::Cylinder;
+  entry.local.radius_m = radius_m;
+  entry.local.a_m = {0, 0, -0.5 * height_m};
+  entry.local.b_m = {0, 0, 0.5 * height_m};
+  return impl_->addObstacle(std::move(entry));
+}
+
+ObstacleId World::addRamp(const Pose& foot, double length_m, double width_m, double height_m,
+                          double friction) {
+  requireFinite(foot, "ramp.pose");
+  requirePositive(length_m, "ramp.length_m");
+  requirePositive(width_m, "ramp.width_m");
+  requirePositive(height_m, "ramp.height_m");
+  requireNonNegative(friction, "ramp.friction");
+  deform::ControlMesh wedge;
+  const double w = 0.5 * width_m;
+  // Corners: 0/1 the low edge (left/right), 2/3 the far bottom edge, 4/5 the top edge above it.
+  wedge.points_m = {{0, w, 0},
+                    {0, -w, 0},
+                    {length_m, w, 0},
+                    {length_m, -w, 0},
+                    {length_m, w, height_m},
+                    {length_m, -w, height_m}};
+  wedge.triangles = {{0, 2, 3}, {0, 3, 1},  // bottom (normal -Z)
+                     {2, 4, 5}, {2, 5, 3},  // back (+X)
+                     {0, 1, 5}, {0, 5, 4},  // slope
+                     {0, 4, 2},             // left side (+Y)
+                     {1, 3, 5}};            // right side (-Y)
+  return impl_->addConvex(ObstacleKind::Ramp, wedge, foot, 0.0, friction);
+}
+
+ObstacleId World::addConvexMesh(const deform::Mesh& mesh, const Pose& pose, double mass_kg, double friction) {
+  requireFinite(pose, "convex_mesh.pose");
+  requireNonNegative(mass_kg, "convex_mesh.mass_kg");
+  requireNonNegative(friction, "convex_mesh.friction");
+  deform::checkMesh(mesh, "convex_mesh");
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : mesh.positions_m) points.push_back(p.cast<double>());
+  return impl_->addConvex(ObstacleKind::ConvexMesh, deform::convexHull(points, "convex_mesh"), pose, mass_kg,
+                          friction);
+}
+
+std::size_t World::obstacleCount() const {
+  return impl_->obstacles.size();
+}
+ObstacleKind World::obstacleKind(ObstacleId id) const {
+  return impl_->obstacles.at(id).kind;
+}
+bool World::obstacleIsDynamic(ObstacleId id) const {
+  return impl_->obstacles.at(id).body != nullptr;
+}
+
+Pose World::obstaclePose(ObstacleId id) const {
+  const ObstacleEntry& o = impl_->obstacles.at(id);
+  if (o.kind == ObstacleKind::Ground) return {};
+  return ode::geomPose(o.geom);
+}
+
+ObstacleShape World::obstacleShape(ObstacleId id) const {
+  const ObstacleEntry& o = impl_->obstacles.at(id);
+  if (o.kind == ObstacleKind::Ground) return o.local;
+  return transformShape(o.local, obstaclePose(id).inverse());
+}
+
+ObstacleShape World::shapeOf(EntityRef entity) const {
+  return entity.kind == EntityRef::Kind::Car ? car(entity.index).shape() : obstacleShape(entity.index);
+}
+
+void World::step() {
+  Impl& m = *impl_;
+  const double dt = fixedDt_s();
+  for (auto& c : m.cars) c->applyForces(dt);
+  m.contacts.clear();
+  dSpaceCollide(m.space, &m, &Impl::nearCallback);
+  // ODE's quick step shuffles constraints with one global random seed: give it this world's own.
+  dRandSetSeed(m.random_seed);
+  dWorldQuickStep(m.world, dt);
+  m.random_seed = dRandGetSeed();
+  dJointGroupEmpty(m.contact_joints);
+  m.time_s += dt;
+  ++m.steps;
+}
+
+int World::advance(double dt_s) {
+  if (!(std::isfinite(dt_s) && dt_s > 0))
+    throw deform::InputError(fieldMessage("dt_s", "time step must be finite and positive", dt_s));
+  Impl& m = *impl_;
+  const double fixed = fixedDt_s();
+  m.accumulator_s += dt_s;
+  int taken = 0;
+  while (m.accumulator_s >= fixed * (1 - 1e-9)) {
+    step();
+    m.accumulator_s -= fixed;
+    ++taken;
+  }
+  if (m.accumulator_s < 0) m.accumulator_s = 0;
+  return taken;
+}
+
+double World::fixedDt_s() const {
+  return 1.0 / impl_->settings.physics_rate_hz;
+}
+double World::time_s() const {
+  return impl_->time_s;
+}
+uint64_t World::stepCount() const {
+  return impl_->steps;
+}
+const std::vector<ContactPoint>& World::contacts() const {
+  return impl_->contacts;
+}
+
+uint64_t World::stateHash() const {
+  std::vector<double> values;
+  for (const auto& c : impl_->cars) c->appendState(values);
+  for (const auto& o : impl_->obstacles) {
+    if (!o.body) continue;
+    const dReal* p = dBodyGetPosition(o.body);
+    const dReal* q = dBodyGetQuaternion(o.body);
+    const dReal* v = dBodyGetLinearVel(o.body);
+    const dReal* w = dBodyGetAngularVel(o.body);
+    values.insert(values.end(),
+                  {p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2]});
+  }
+  return fnv1a(values.data(), values.size() * sizeof(double));
+}
+
+}  // namespace vehicle
