@@ -18,9 +18,9 @@ struct WheelPart {
 
 /// A vehicle as loaded or generated: the deformable body and the parts that are not deformed.
 struct VehicleModel {
-  Mesh body;                     ///< deformable render mesh
-  std::vector<WheelPart> wheels; ///< empty when the source has none
-  std::string source;            ///< where it came from, for messages
+  Mesh body;                      ///< deformable render mesh
+  std::vector<WheelPart> wheels;  ///< empty when the source has none
+  std::string source;             ///< where it came from, for messages
 };
 
 /// Passenger car about 4.8 x 1.8 x 1.45 m (bonnet, windscreen, cabin, boot, wheel arches), closed
@@ -39,6 +39,8 @@ Mesh makeWheelMesh(double radius_m, double width_m, int segments = 32);
 
 /// Parses "builtin:NAME[?key=value&...]" (sedan: vertices; can: vertices; box: x, y, z, vertices)
 /// and builds it. Throws InputError naming the spec and the key for an unknown name, key or value.
+/// Defaults: sedan 20,000 vertices, can 4,000, box 1 x 1 x 1 m with 600; `vertices` must lie in
+/// [100, 50,000,000] and box sizes in (0, 1000] m. The model's `source` is the spec.
 VehicleModel makeBuiltin(const std::string& spec);
 
 /// True when `spec` starts with "builtin:".
