@@ -132,3 +132,129 @@ TEST_CASE("parked sedan sits level on its suspension and does not creep or jitte
     }
   }
 }
+
+TEST_CASE("a car stopped by its brakes settles and stays put, also on a 10 % slope", "[vehicle][driving]") {
+  for (int mode = 0; mode < 3;
+       ++mode) {  // 0: stop on the flat; 1, 2: dropped on a slope, handbrake / foot brake
+    WorldSettings settings;
+    settings.ground = mode == 0;
+    World world(settings);
+    CarStart start;
+    const double slope = std::atan(0.1);
+    if (mode > 0) {
+      world.addWall(Pose{{0, 0, 0}, Eigen::Quaterniond(Eigen::AngleAxisd(-slope, Eigen::Vector3d::UnitY()))},
+                    {100, 20, 1});
+      start.position_m = {0, 0, 0.5 / std::cos(slope) + 0.2};
+    }
+    Car& car = world.car(world.addCar(sedan(), {}, start));
+    SpeedController speed;
+    const double dt = world.fixedDt_s();
+    if (mode == 0) {
+      for (int i = 0; i < 3 * 500; ++i) {
+        car.setInput(speed.update(3.0, car.forwardSpeed_mps(), dt));
+        world.step();
+      }
+    }
+    DriverInput park;
+    park.handbrake = mode != 2;
+    park.brake = mode == 2 ? 1.0 : 0.0;
+    car.setInput(park);
+    for (int i = 0; i < 3 * 500; ++i) world.step();  // stop and settle
+    const Pose settled = car.bodyPose();
+    double peak_speed = 0;
+    for (int i = 0; i < 10 * 500; ++i) {
+      world.step();
+      peak_speed = std::max(peak_speed, car.velocity_mps().norm());
+    }
+    const double drift = (car.bodyPose().position_m - settled.position_m).norm();
+    const double pitch_deg = vehicle_test::pitch_rad(car.bodyPose()) * 180 / std::numbers::pi;
+    std::printf("[figure] %s: pitch %.3f deg, drift over 10 s %.2e m, peak speed %.2e m/s\n",
+                mode == 0   ? "stopped on the flat, handbrake"
+                : mode == 1 ? "10 % slope, handbrake"
+                            : "10 % slope, foot brake",
+                pitch_deg, drift, peak_speed);
+    CHECK(drift < 1e-3);
+    CHECK(peak_speed < 1e-3);
+    if (mode == 0) CHECK(std::abs(pitch_deg) < 0.25);
+    if (mode > 0) CHECK(pitch_deg == Approx(slope * 180 / std::numbers::pi).margin(0.5));
+  }
+}
+
+TEST_CASE("driving figures do not depend on the physics rate", "[vehicle][driving]") {
+  auto zeroTo100 = [](double rate_hz) {
+    WorldSettings settings;
+    settings.physics_rate_hz = rate_hz;
+    World world(settings);
+    Car& car = world.car(world.addCar(sedan()));
+    DriverInput input;
+    input.throttle = 1;
+    car.setInput(input);
+    while (car.forwardSpeed_mps() < 100 * kKmh && world.time_s() < 30) world.step();
+    return world.time_s();
+  };
+  auto brakingDistance = [](double rate_hz) {
+    WorldSettings settings;
+    settings.physics_rate_hz = rate_hz;
+    World world(settings);
+    CarStart start;
+    start.speed_mps = 100 * kKmh;
+    Car& car = world.car(world.addCar(sedan(), {}, start));
+    DriverInput input;
+    input.brake = 1;
+    car.setInput(input);
+    while (car.forwardSpeed_mps() > 0.05 && world.time_s() < 20) world.step();
+    return car.bodyPose().position_m.x();
+  };
+  const double t500 = zeroTo100(500), d500 = brakingDistance(500);
+  for (double rate : {240.0, 2000.0}) {
+    const double t = zeroTo100(rate), d = brakingDistance(rate);
+    std::printf("[figure] at %.0f Hz: 0-100 km/h %.2f s (500 Hz: %.2f s), braking %.2f m (500 Hz: %.2f m)\n",
+                rate, t, t500, d, d500);
+    CHECK(t == Approx(t500).epsilon(0.02));
+    CHECK(d == Approx(d500).epsilon(0.02));
+  }
+}
+
+TEST_CASE("wheel state for drawing: rolling, steering, riding", "[vehicle][driving]") {
+  World world;
+  CarStart start;
+  start.speed_mps = 10;
+  Car& car = world.car(world.addCar(sedan(), {}, start));
+  DriverInput input;
+  input.throttle = 0.15;
+  input.steering = 0.2;  // 0.12 rad: a 23 m radius, 0.45 g at 10 m/s
+  car.setInput(input);
+  std::vector<double> previous_rotation;
+  for (const auto& w : car.wheels()) previous_rotation.push_back(w.rotation_rad);
+  for (int i = 0; i < 250; ++i) world.step();
+  CHECK(car.steerAngle_rad() == Approx(0.2 * car.settings().max_steer_rad));
+  for (std::size_t i = 0; i < car.wheels().size(); ++i) {
+    const WheelState& w = car.wheels()[i];
+    const WheelSettings& ws = car.wheelSettings()[i];
+    CHECK(w.in_contact);
+    CHECK(w.tyre.spin_rad_s * ws.radius_m == Approx(car.forwardSpeed_mps()).epsilon(0.1));
+    CHECK(w.rotation_rad >= 0);
+    CHECK(w.rotation_rad < 2 * std::numbers::pi);
+    CHECK(w.compression_m > 0.03);
+    CHECK(w.compression_m < ws.max_compression_m);
+    if (ws.steered)
+      CHECK(w.steer_angle_rad > 0);
+    else
+      CHECK(w.steer_angle_rad == 0);
+    // The drawn hub sits on the road: radius above the contact point.
+    const Pose hub = car.wheelPose(i);
+    CHECK((hub.position_m - w.contact_point_m).norm() == Approx(ws.radius_m).epsilon(0.05));
+  }
+  // Turning left: the inner (left) front wheel steers more than the outer one (Ackermann).
+  double left = 0, right = 0;
+  for (std::size_t i = 0; i < car.wheels().size(); ++i) {
+    if (!car.wheelSettings()[i].steered) continue;
+    (car.wheelSettings()[i].centre_m.y() > 0 ? left : right) = car.wheels()[i].steer_angle_rad;
+  }
+  CHECK(left > right);
+  // Leaning out of the turn: the right (outer) wheels carry more.
+  double load_left = 0, load_right = 0;
+  for (std::size_t i = 0; i < car.wheels().size(); ++i)
+    (car.wheelSettings()[i].centre_m.y() > 0 ? load_left : load_right) += car.wheels()[i].normal_load_N;
+  CHECK(load_right > load_left);
+}

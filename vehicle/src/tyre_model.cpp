@@ -116,26 +116,34 @@ TyreStepResult stepTyre(TyreState& state, const TyreStepInput& in, const TyreSet
   const double b = dt * r / denom;
 
   // The brush force is the linear force times brushFactor(s); iterate on that secant factor so the
-  // spin sees the saturated force (a spinning or locking wheel) while staying implicit.
-  double factor = 1.0, spin = state.spin_rad_s, u1 = a, s = 0;
+  // spin sees the saturating force while staying implicit.
+  double factor = 1.0, spin = state.spin_rad_s, u1 = a;
+  auto slipOf = [&](double u) {
+    return std::hypot(c_kappa * u / sigma_x, c_alpha * v1 / sigma_y) / (3.0 * mu * load);
+  };
   for (int iteration = 0; iteration < 8; ++iteration) {
-    const double f0 = k_x * factor * a - d_x * vx;
-    const double g = k_x * factor * b + d_x * r;
-    spin = solveSpin(f0, g);
+    spin = solveSpin(k_x * factor * a - d_x * vx, k_x * factor * b + d_x * r);
     u1 = a + b * spin;
-    s = std::hypot(c_kappa * u1 / sigma_x, c_alpha * v1 / sigma_y) / (3.0 * mu * load);
-    const double next = brushFactor(s);
+    const double next = brushFactor(slipOf(u1));
     if (std::abs(next - factor) <= 1e-9 * factor) break;
     factor = next;
   }
-  const double phi_x = c_kappa * u1 / sigma_x, phi_y = c_alpha * v1 / sigma_y;
-  double fx = factor * phi_x + d_x * (spin * r - vx);
-  double fy = -factor * phi_y - d_y * vy;
+  double fx = factor * c_kappa * u1 / sigma_x + d_x * (spin * r - vx);
+  double fy = -factor * c_alpha * v1 / sigma_y - d_y * vy;
   const double limit = mu * load, total = std::hypot(fx, fy);
   if (total > limit) {
+    // Sliding (with the low-speed damper too): the force is mu F_z along the sticking force's
+    // direction, a constant, so the spin follows exactly from the torques.
     fx *= limit / total;
     fy *= limit / total;
+    const double slip_before = spin * r - vx;
+    double sliding_spin = solveSpin(fx, 0.0);
+    // The wheel caught up with the road within the step: it sticks at rolling speed instead.
+    if (!out.locked && slip_before * (sliding_spin * r - vx) < 0) sliding_spin = vx / r;
+    spin = sliding_spin;
+    u1 = a + b * spin;
   }
+  const double s = slipOf(u1);
   // A sliding tread does not wind up further: hold the deflection at the edge of sliding.
   if (s > 1.0) {
     u1 /= s;
@@ -144,7 +152,7 @@ TyreStepResult stepTyre(TyreState& state, const TyreStepInput& in, const TyreSet
   state.spin_rad_s = spin;
   state.longitudinal_deflection_m = u1;
   state.lateral_deflection_m = v1;
-  out.force = {fx, fy, s >= 1.0};
+  out.force = {fx, fy, s >= 1.0 || total > limit};
   out.slip_ratio = u1 / sigma_x;
   out.slip_angle_rad = std::atan(v1 / sigma_y);
   return out;
