@@ -5,7 +5,10 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <string>
@@ -136,19 +139,190 @@ void refineHull(ControlMesh& mesh, std::size_t target) {
   }
 }
 
+/// Farthest-point sampling: starts at the candidate farthest from the centre, then repeatedly takes the
+/// candidate farthest from everything taken so far. The largest gap left is at most twice the smallest
+/// possible for that many points. Ties go to the lower index (deterministic). With `mirror_of` (each
+/// candidate's mirror image), points are taken with their mirror images, so a symmetric body gets a
+/// symmetric set; an odd remainder is taken on the plane of symmetry.
+///
+/// Corners first: while some candidate flagged in `corner` is at least `corner_spacing_m` from
+/// everything taken, only corners are considered, so a coarse control mesh keeps the body's extreme
+/// points (a box's 8 corners, a car's nose and roof line) and its volume.
+std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candidates, std::size_t count,
+                                     const Eigen::Vector3d& centre, const std::vector<uint32_t>& mirror_of,
+                                     const std::vector<char>& corner, double corner_spacing_m) {
+  std::vector<double> nearest_taken2(candidates.size(), std::numeric_limits<double>::infinity());
+  std::vector<uint32_t> taken;
+  auto take = [&](uint32_t i) {
+    taken.push_back(i);
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      nearest_taken2[c] = std::min(nearest_taken2[c], (candidates[c] - candidates[i]).squaredNorm());
+  };
+  bool corners_only = true;
+  auto farthest = [&](bool on_plane_only, const auto& score) {
+    std::size_t best = candidates.size();
+    double best_score = -1;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (on_plane_only && mirror_of[c] != c) continue;
+      if (corners_only && !corner[c]) continue;
+      if (score(c) > best_score) best_score = score(c), best = c;
+    }
+    return std::make_pair(best, best_score);
+  };
+  bool first = true;
+  while (taken.size() < count) {
+    const bool symmetric = !mirror_of.empty();
+    const bool need_single = symmetric && count - taken.size() == 1;
+    auto pick = [&] {
+      return first ? farthest(need_single,
+                              [&](std::size_t c) { return (candidates[c] - centre).squaredNorm(); })
+                   : farthest(need_single, [&](std::size_t c) { return nearest_taken2[c]; });
+    };
+    auto [next, score] = pick();
+    if (corners_only &&
+        (next == candidates.size() || (!first && score < corner_spacing_m * corner_spacing_m))) {
+      corners_only = false;
+      std::tie(next, score) = pick();
+    }
+    first = false;
+    if (next == candidates.size() || score <= 0) break;  // every distinct candidate is taken
+    take(static_cast<uint32_t>(next));
+    if (symmetric && mirror_of[next] != next && taken.size() < count) take(mirror_of[next]);
+  }
+  return taken;
+}
+
+/// Mirror images within the set (y -> -y), or empty when some point has none. Points within `tol_m` of
+/// the plane are their own images.
+std::vector<uint32_t> mirrorPairs(const std::vector<Eigen::Vector3d>& points, double tol_m) {
+  std::map<std::array<double, 3>, uint32_t> index;
+  for (uint32_t i = 0; i < points.size(); ++i) index[{points[i].x(), points[i].y(), points[i].z()}] = i;
+  std::vector<uint32_t> mirror(points.size());
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    if (std::abs(p.y()) <= tol_m) {
+      mirror[i] = i;
+      continue;
+    }
+    auto it = index.find({p.x(), -p.y(), p.z()});
+    if (it == index.end()) return {};
+    mirror[i] = it->second;
+  }
+  return mirror;
+}
+
+/// Points spread over the surface by area: each triangle gets its share of `count` (the fractional
+/// remainder carried to the next triangle, so the total is exact and nothing is random), placed by the
+/// R2 low-discrepancy sequence folded into the triangle.
+std::vector<Eigen::Vector3d> areaSamples(const ControlMesh& mesh, std::size_t count) {
+  double total_area = 0;
+  std::vector<double> area(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    area[t] = 0.5 * (mesh.points_m[tri[1]] - mesh.points_m[tri[0]])
+                        .cross(mesh.points_m[tri[2]] - mesh.points_m[tri[0]])
+                        .norm();
+    total_area += area[t];
+  }
+  std::vector<Eigen::Vector3d> samples;
+  samples.reserve(count + 1);
+  const double g = 1.32471795724474602596;  // plastic number: R2 sequence (Roberts 2018)
+  const double a1 = 1.0 / g, a2 = 1.0 / (g * g);
+  double carried = 0;
+  std::size_t sequence = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    carried += static_cast<double>(count) * area[t] / total_area;
+    const auto here = static_cast<std::size_t>(carried);
+    carried -= static_cast<double>(here);
+    const auto& tri = mesh.triangles[t];
+    const Eigen::Vector3d a = mesh.points_m[tri[0]], ab = mesh.points_m[tri[1]] - a,
+                          ac = mesh.points_m[tri[2]] - a;
+    for (std::size_t k = 0; k < here; ++k, ++sequence) {
+      double u = std::fmod(0.5 + a1 * static_cast<double>(sequence), 1.0);
+      double v = std::fmod(0.5 + a2 * static_cast<double>(sequence), 1.0);
+      if (u + v > 1) u = 1 - u, v = 1 - v;
+      samples.push_back(a + u * ab + v * ac);
+    }
+  }
+  return samples;
+}
+
+/// Even spread: candidates are the hull's vertices (its corners) plus eight points per control point
+/// spread over its surface by area, so large flat faces such as a floor pan are covered as densely as
+/// the curved ones; farthest-point sampling then takes the control points.
+///
+/// A body whose hull is symmetric about the X-Z plane keeps that symmetry: candidates are taken on the
+/// half y >= 0 and mirrored exactly, and points are chosen in mirror pairs.
+ControlMesh evenControlMesh(const ControlMesh& hull, std::size_t target, const std::string& where) {
+  std::vector<Eigen::Vector3d> candidates = hull.points_m;
+  const auto samples = areaSamples(hull, 8 * target);
+  candidates.insert(candidates.end(), samples.begin(), samples.end());
+  std::vector<char> corner(candidates.size(), 0);
+  std::fill(corner.begin(), corner.begin() + static_cast<std::ptrdiff_t>(hull.hull_vertex_count), 1);
+  double area_m2 = 0;
+  for (const auto& t : hull.triangles)
+    area_m2 +=
+        0.5 *
+        (hull.points_m[t[1]] - hull.points_m[t[0]]).cross(hull.points_m[t[2]] - hull.points_m[t[0]]).norm();
+  // Corners closer than half the even spacing would crowd a coarse mesh; past that, evenness wins.
+  const double corner_spacing_m = 0.5 * std::sqrt(area_m2 / static_cast<double>(target));
+  double extent = 0;
+  for (const auto& p : hull.points_m) extent = std::max(extent, (p - hull.centre_of_mass_m).norm());
+  const double plane_tol_m = 1e-9 * extent;
+  std::vector<uint32_t> mirror;
+  if (!mirrorPairs(hull.points_m, plane_tol_m).empty()) {
+    std::vector<Eigen::Vector3d> half;
+    std::vector<char> half_corner;
+    // A pair closer to the plane than a quarter of the spacing would sit crowded across it: such a
+    // candidate is moved onto the plane instead (a change of position well under the spacing).
+    const double onto_plane_m = std::max(plane_tol_m, 0.5 * corner_spacing_m);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const auto& c = candidates[i];
+      if (c.y() > onto_plane_m) {
+        half.push_back(c);
+        half.emplace_back(c.x(), -c.y(), c.z());
+        half_corner.insert(half_corner.end(), 2, corner[i]);
+      } else if (c.y() >= -onto_plane_m) {
+        half.emplace_back(c.x(), 0.0, c.z());
+        half_corner.push_back(corner[i]);
+      }
+    }
+    candidates = std::move(half);
+    corner = std::move(half_corner);
+    mirror = mirrorPairs(candidates, plane_tol_m);
+  }
+  const auto taken =
+      farthestPoints(candidates, target, hull.centre_of_mass_m, mirror, corner, corner_spacing_m);
+  std::vector<Eigen::Vector3d> chosen;
+  for (uint32_t i : taken) chosen.push_back(candidates[i]);
+  ControlMesh mesh = triangulateOnConvexSurface(chosen, where.c_str());
+  if (!mirror.empty()) mesh.mirror_of = mirrorPairs(mesh.points_m, plane_tol_m);
+  return mesh;
+}
+
 }  // namespace
 
+LodMethod parseLodMethod(const std::string& text, const std::string& field) {
+  if (text == "even") return LodMethod::Even;
+  if (text == "simplify") return LodMethod::Simplify;
+  throw InputError(field + ": '" + text + "' is not a level-of-detail method (even, simplify)");
+}
+
 ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::size_t target_points,
-                             const char* source) {
+                             const char* source, LodMethod method) {
   const std::string where = source ? source : "mesh";
   if (target_points < kMinControlPoints || target_points > kMaxControlPoints)
     throw InputError(where + ": control points must be between " + std::to_string(kMinControlPoints) +
                      " and " + std::to_string(kMaxControlPoints) + " (got " + std::to_string(target_points) +
                      ")");
   ControlMesh hull = convexHull(points, where.c_str());
-  const std::size_t hull_vertices = hull.points_m.size();
+  const std::size_t hull_vertices = hull.hull_vertex_count;
   ControlMesh mesh;
-  if (hull_vertices > target_points) {
+  if (hull.points_m.size() == target_points) {
+    mesh = std::move(hull);  // the hull itself, with its symmetric facet fans
+  } else if (method == LodMethod::Even) {
+    mesh = evenControlMesh(hull, target_points, where);
+  } else if (hull.points_m.size() > target_points) {
     mesh = reduceHull(hull, target_points, where);
   } else {
     mesh = std::move(hull);

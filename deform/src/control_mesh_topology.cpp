@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 #include <map>
+
+#include "nearest_points.hpp"
 
 namespace deform {
 
@@ -46,11 +49,28 @@ void finishControlMesh(ControlMesh& mesh) {
 
 ControlMeshStats controlMeshStats(const ControlMesh& mesh) {
   ControlMeshStats stats;
-  stats.smallest_gap_m = mesh.edges.empty() ? 0 : std::numeric_limits<double>::infinity();
+  stats.shortest_edge_m = mesh.edges.empty() ? 0 : std::numeric_limits<double>::infinity();
   for (const auto& e : mesh.edges) {
     double length = (mesh.points_m[e.a] - mesh.points_m[e.b]).norm();
-    stats.largest_gap_m = std::max(stats.largest_gap_m, length);
-    stats.smallest_gap_m = std::min(stats.smallest_gap_m, length);
+    stats.longest_edge_m = std::max(stats.longest_edge_m, length);
+    stats.shortest_edge_m = std::min(stats.shortest_edge_m, length);
+  }
+  // The largest hole: sample every triangle (its corners, edge midpoints and a 6 x 6 barycentric grid)
+  // and take the largest distance to the nearest control point.
+  if (mesh.points_m.empty()) return stats;
+  detail::PointKdTree tree(mesh.points_m);
+  std::vector<detail::RankedPoint> nearest;
+  constexpr int kGrid = 6;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.points_m[t[0]], b = mesh.points_m[t[1]], c = mesh.points_m[t[2]];
+    stats.surface_area_m2 += 0.5 * (b - a).cross(c - a).norm();
+    for (int i = 0; i <= kGrid; ++i) {
+      for (int j = 0; i + j <= kGrid; ++j) {
+        const double u = double(i) / kGrid, v = double(j) / kGrid;
+        tree.nearest(a + u * (b - a) + v * (c - a), 1, nearest);
+        stats.largest_gap_m = std::max(stats.largest_gap_m, std::sqrt(nearest[0].distance2_m2));
+      }
+    }
   }
   return stats;
 }

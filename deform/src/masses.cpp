@@ -36,6 +36,14 @@ MassSplit distributeMass(const ControlMesh& mesh, double vehicle_mass_kg) {
     for (uint32_t v : mesh.triangles[t]) split.point_mass_kg[v] += quarter_kg;
     split.core_mass_kg += quarter_kg;
   }
+  // A symmetric body's control points are symmetric, but the diagonals a triangulation picks across
+  // coplanar quads are not; each mirror pair shares its mass equally so the car stays balanced.
+  if (mesh.mirror_of.size() == split.point_mass_kg.size()) {
+    std::vector<double> balanced(split.point_mass_kg.size());
+    for (std::size_t i = 0; i < balanced.size(); ++i)
+      balanced[i] = 0.5 * (split.point_mass_kg[i] + split.point_mass_kg[mesh.mirror_of[i]]);
+    split.point_mass_kg = std::move(balanced);
+  }
   return split;
 }
 

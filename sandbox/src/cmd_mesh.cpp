@@ -1,3 +1,4 @@
+#include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
 
@@ -16,6 +17,7 @@ struct MeshInfoFlags {
   std::string mesh;
   MeshLoadFlags load;
   std::size_t control_points = 60;
+  std::string lod = "even";
   double alpha = 3.5;
   std::size_t k = 8;
   double mass_kg = 1500;
@@ -32,6 +34,7 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   MeshReportOptions options;
   options.control_points = flags.control_points;
+  options.lod = deform::parseLodMethod(flags.lod, "--lod");
   options.vehicle_mass_kg = flags.mass_kg;
   options.skin = {flags.alpha, flags.k, flags.threads};
   const auto report = meshReport(model, options);
@@ -54,6 +57,9 @@ void registerMeshCommands(CLI::App& app) {
       ->required();
   flags->load.addTo(*info);
   info->add_option("--control-points", flags->control_points, "Control points N (level of detail)")
+      ->capture_default_str();
+  info->add_option("--lod", flags->lod,
+                   "Level-of-detail method: even (spread over the hull) or simplify (meshoptimizer)")
       ->capture_default_str();
   info->add_option("--alpha", flags->alpha, "Inverse-distance power of the embedding")->capture_default_str();
   info->add_option("--k", flags->k, "Influences per vertex (0 = dense)")->capture_default_str();

@@ -31,7 +31,7 @@ nlohmann::ordered_json meshReport(const deform::VehicleModel& model, const MeshR
   points.reserve(body.positions_m.size());
   for (const auto& p : body.positions_m) points.push_back(p.cast<double>());
   const deform::ControlMesh control =
-      deform::buildControlMesh(points, options.control_points, model.source.c_str());
+      deform::buildControlMesh(points, options.control_points, model.source.c_str(), options.lod);
   const double control_ms = msSince(start);
   const deform::ControlMeshStats stats = deform::controlMeshStats(control);
   const deform::MassSplit masses = deform::distributeMass(control, options.vehicle_mass_kg);
@@ -70,8 +70,12 @@ nlohmann::ordered_json meshReport(const deform::VehicleModel& model, const MeshR
   report["control_points"] = control.points_m.size();
   report["control_triangles"] = control.triangles.size();
   report["control_edges"] = control.edges.size();
+  report["lod_method"] = options.lod == deform::LodMethod::Even ? "even" : "simplify";
   report["largest_gap_m"] = stats.largest_gap_m;
-  report["smallest_gap_m"] = stats.smallest_gap_m;
+  report["longest_edge_m"] = stats.longest_edge_m;
+  report["shortest_edge_m"] = stats.shortest_edge_m;
+  report["even_gap_m"] = std::sqrt(stats.surface_area_m2 / static_cast<double>(control.points_m.size()));
+  report["mirror_symmetric"] = !control.mirror_of.empty();
   report["hull_volume_m3"] = control.volume_m3;
   report["centre_of_mass_m"] = vec(control.centre_of_mass_m);
   report["mass"] = {{"vehicle_kg", options.vehicle_mass_kg},
@@ -110,9 +114,15 @@ std::string formatMeshReport(const nlohmann::ordered_json& r) {
                 r["hull_vertices"].get<std::size_t>(), r["hull_volume_m3"].get<double>(),
                 v3(r["centre_of_mass_m"]).c_str());
   out << line;
-  std::snprintf(line, sizeof line, "control mesh       %zu points, %zu triangles, gaps %.3f .. %.3f m\n",
-                r["control_points"].get<std::size_t>(), r["control_triangles"].get<std::size_t>(),
-                r["smallest_gap_m"].get<double>(), r["largest_gap_m"].get<double>());
+  std::snprintf(line, sizeof line, "control mesh       %zu points (%s), %zu triangles%s\n",
+                r["control_points"].get<std::size_t>(), r["lod_method"].get<std::string>().c_str(),
+                r["control_triangles"].get<std::size_t>(),
+                r["mirror_symmetric"].get<bool>() ? ", mirror-symmetric" : "");
+  out << line;
+  std::snprintf(line, sizeof line,
+                "spread [m]         largest gap %.3f (even spacing %.3f), edges %.3f .. %.3f\n",
+                r["largest_gap_m"].get<double>(), r["even_gap_m"].get<double>(),
+                r["shortest_edge_m"].get<double>(), r["longest_edge_m"].get<double>());
   out << line;
   const auto& m = r["mass"];
   std::snprintf(line, sizeof line,

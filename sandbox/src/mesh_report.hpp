@@ -2,6 +2,7 @@
 // What `sandbox mesh info` measures of a mesh: its size, its control mesh, the mass split and the checks
 // of its embedding.
 #include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
 #include <deform/skin.hpp>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@ namespace sandbox {
 
 struct MeshReportOptions {
   std::size_t control_points = 60;
+  deform::LodMethod lod = deform::LodMethod::Even;
   double vehicle_mass_kg = 1500;
   deform::SkinOptions skin;
 };

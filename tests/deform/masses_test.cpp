@@ -33,22 +33,27 @@ TEST_CASE("a cube's corners share the shell mass by their tetrahedra", "[masses]
 
 TEST_CASE("a mirror-symmetric body gets mirror-symmetric masses", "[masses]") {
   auto points = test_points::mirroredInY(test_points::sphere(600, {2.4, 0.9, 0.7}));
-  auto mesh = deform::convexHull(points);
-  auto split = deform::distributeMass(mesh, 1500.0);
-  double left = 0, right = 0;
-  for (std::size_t i = 0; i < mesh.points_m.size(); ++i) {
-    const auto& p = mesh.points_m[i];
-    if (p.y() > 1e-12) left += split.point_mass_kg[i];
-    if (p.y() < -1e-12) right += split.point_mass_kg[i];
-    // The mirror point exists and carries the same mass.
-    Eigen::Vector3d mirror(p.x(), -p.y(), p.z());
-    std::size_t nearest = 0;
-    for (std::size_t k = 1; k < mesh.points_m.size(); ++k)
-      if ((mesh.points_m[k] - mirror).norm() < (mesh.points_m[nearest] - mirror).norm()) nearest = k;
-    REQUIRE((mesh.points_m[nearest] - mirror).norm() < 1e-12);
-    CHECK(split.point_mass_kg[nearest] == Approx(split.point_mass_kg[i]).epsilon(1e-9));
+  // The hull itself (600 points) and every level of detail, coarser and finer.
+  for (std::size_t target : {600u, 8u, 31u, 60u, 250u, 2000u}) {
+    CAPTURE(target);
+    auto mesh = deform::buildControlMesh(points, target);
+    if (target != 600) CHECK(mesh.mirror_of.size() == mesh.points_m.size());
+    auto split = deform::distributeMass(mesh, 1500.0);
+    double left = 0, right = 0;
+    for (std::size_t i = 0; i < mesh.points_m.size(); ++i) {
+      const auto& p = mesh.points_m[i];
+      if (p.y() > 1e-12) left += split.point_mass_kg[i];
+      if (p.y() < -1e-12) right += split.point_mass_kg[i];
+      // The mirror point exists and carries the same mass.
+      Eigen::Vector3d mirror(p.x(), -p.y(), p.z());
+      std::size_t nearest = 0;
+      for (std::size_t k = 1; k < mesh.points_m.size(); ++k)
+        if ((mesh.points_m[k] - mirror).norm() < (mesh.points_m[nearest] - mirror).norm()) nearest = k;
+      REQUIRE((mesh.points_m[nearest] - mirror).norm() < 1e-12);
+      CHECK(split.point_mass_kg[nearest] == Approx(split.point_mass_kg[i]).epsilon(1e-9));
+    }
+    CHECK(left == Approx(right).epsilon(1e-9));
   }
-  CHECK(left == Approx(right).epsilon(1e-9));
 }
 
 TEST_CASE("a mass that is not finite and positive is refused", "[masses]") {

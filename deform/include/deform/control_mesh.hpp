@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace deform {
@@ -24,11 +25,18 @@ struct ControlMesh {
   Eigen::Vector3d centre_of_mass_m{0, 0, 0};       ///< centroid of the solid hull (uniform density) [m]
   double volume_m3 = 0;                            ///< volume enclosed by the surface [m^3]
   std::size_t hull_vertex_count = 0;               ///< vertices of the full convex hull, before LOD
+  /// For a body symmetric about its X-Z plane (y -> -y): the index of each point's mirror image (itself
+  /// on the plane). Empty when the body is not symmetric or the method does not keep symmetry.
+  std::vector<uint32_t> mirror_of;
 };
 
 struct ControlMeshStats {
-  double largest_gap_m = 0;   ///< longest edge between neighbouring control points [m]
-  double smallest_gap_m = 0;  ///< shortest edge [m]
+  /// Radius of the largest hole: the largest distance from a point of the control surface to its
+  /// nearest control point [m]. For an even spread of N points over area A it is near sqrt(A / N).
+  double largest_gap_m = 0;
+  double longest_edge_m = 0;   ///< longest edge between neighbouring control points [m]
+  double shortest_edge_m = 0;  ///< shortest edge [m]
+  double surface_area_m2 = 0;  ///< area of the control surface [m^2]
 };
 
 /// How a hull facet with 4 or more coplanar corners becomes triangles.
@@ -43,11 +51,32 @@ enum class FacetSplit {
 ControlMesh convexHull(const std::vector<Eigen::Vector3d>& points, const char* source = "mesh",
                        FacetSplit split = FacetSplit::CentroidFan);
 
-/// Control mesh with `target_points` control points (4 .. 100,000): the hull simplified
-/// (meshoptimizer, then re-hulled) when the hull has more vertices, refined by longest-edge bisection of
-/// its faces when it has fewer. Deterministic. Count within 5 % of the target.
+/// How the hull becomes N control points.
+enum class LodMethod {
+  /// Points spread evenly over the hull's surface (farthest-point sampling of the hull's vertices and
+  /// of points added on its faces by longest-edge bisection), triangulated through their directions
+  /// from the centre of mass. Every region of the body gets control points: a dent in a flat door
+  /// has points to move. The default.
+  Even,
+  /// The paper's reduction: the hull simplified by meshoptimizer's quadric simplifier, then re-hulled,
+  /// so it stays strictly convex. Keeps corners, leaves flat regions (roof, doors) with few points.
+  /// Above the hull's vertex count, faces are refined by longest-edge bisection.
+  Simplify,
+};
+
+/// Control mesh with `target_points` control points (4 .. 100,000), built from the convex hull of
+/// `points` by `method`. Deterministic. Count within 5 % of the target (Even: exact).
 ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::size_t target_points,
-                             const char* source = "mesh");
+                             const char* source = "mesh", LodMethod method = LodMethod::Even);
+
+/// Parses "even" or "simplify"; throws InputError naming `field` otherwise.
+LodMethod parseLodMethod(const std::string& text, const std::string& field);
+
+/// A closed triangulation through `points`, all of which lie on a convex surface: their convex hull,
+/// with the points it drops (those inside flat faces) inserted into those faces, and Delaunay edge flips
+/// inside flat regions. Every distinct point is a vertex; triangles face outward.
+ControlMesh triangulateOnConvexSurface(const std::vector<Eigen::Vector3d>& points,
+                                       const char* source = "mesh");
 
 ControlMeshStats controlMeshStats(const ControlMesh& mesh);
 
