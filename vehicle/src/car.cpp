@@ -261,8 +261,10 @@ void Car::applyForces(double dt_s) {
                   tyre.force.lateral_N * left;
       const Eigen::Vector3d& p = s.contact_point_m;
       dBodyAddForceAtPos(body_, s.force_N.x(), s.force_N.y(), s.force_N.z(), p.x(), p.y(), p.z());
-      if (hit.body != nullptr)  // what the tyre stands on is pushed back (another car, a fallen tree)
+      if (hit.body != nullptr) {  // what the tyre stands on is pushed back (another car, a fallen tree)
+        dBodyEnable(hit.body);
         dBodyAddForceAtPos(hit.body, -s.force_N.x(), -s.force_N.y(), -s.force_N.z(), p.x(), p.y(), p.z());
+      }
     }
   }
 

@@ -33,6 +33,16 @@ void installHandlers() {
 
 constexpr uint32_t kCarKind = 0, kObstacleKind = 1;
 
+/// Free obstacles sleep after half a second below 1 cm/s and 0.01 rad/s (DESIGN.md section 8: no work
+/// for what does not move; a standing tree does not creep); a contact with a moving body or a wheel
+/// standing on them wakes them.
+void allowSleep(dBodyID body) {
+  dBodySetAutoDisableFlag(body, 1);
+  dBodySetAutoDisableLinearThreshold(body, 0.01);
+  dBodySetAutoDisableAngularThreshold(body, 0.01);
+  dBodySetAutoDisableTime(body, 0.5);
+}
+
 std::string fieldMessage(const char* field, const std::string& rule, double value) {
   return std::string(field) + ": " + rule + " (got " + std::to_string(value) + ")";
 }
@@ -173,6 +183,7 @@ struct World::Impl {
       dBodySetMass(entry.body, &mass);
       dGeomSetBody(entry.geom, entry.body);
       ode::setBodyPose(entry.body, placed);
+      allowSleep(entry.body);
     } else {
       ode::setGeomPose(entry.geom, placed);
     }
@@ -367,6 +378,7 @@ ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, 
   dGeomSetBody(entry.geom, entry.body);
   ode::setBodyPose(entry.body,
                    {base_m + Eigen::Vector3d(0, 0, 0.5 * height_m), Eigen::Quaterniond::Identity()});
+  allowSleep(entry.body);
   entry.local.type = ShapeType::Cylinder;
   entry.local.radius_m = radius_m;
   entry.local.a_m = {0, 0, -0.5 * height_m};
