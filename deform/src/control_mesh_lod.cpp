@@ -319,17 +319,27 @@ ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::si
   const std::size_t hull_vertices = hull.hull_vertex_count;
   ControlMesh mesh;
   if (hull.points_m.size() == target_points) {
-    mesh = std::move(hull);  // the hull itself, with its symmetric facet fans
+    mesh = hull;  // the hull itself, with its symmetric facet fans
   } else if (method == LodMethod::Even) {
     mesh = evenControlMesh(hull, target_points, where);
   } else if (hull.points_m.size() > target_points) {
     mesh = reduceHull(hull, target_points, where);
   } else {
-    mesh = std::move(hull);
+    mesh = hull;
     refineHull(mesh, target_points);
     finishControlMesh(mesh);
   }
   mesh.hull_vertex_count = hull_vertices;
+  // The body's centre of mass is the full hull's, whatever the level of detail, as long as the control
+  // surface encloses it (every tetrahedron of the fan positive); a very coarse mesh keeps its own.
+  bool encloses = true;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.points_m[t[0]] - hull.centre_of_mass_m,
+                          b = mesh.points_m[t[1]] - hull.centre_of_mass_m,
+                          c = mesh.points_m[t[2]] - hull.centre_of_mass_m;
+    encloses = encloses && a.dot(b.cross(c)) > 0;
+  }
+  if (encloses) mesh.centre_of_mass_m = hull.centre_of_mass_m;
   return mesh;
 }
 

@@ -11,6 +11,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   sandbox::registerMeshCommands(app);
   sandbox::registerBenchCommands(app);
+  // CLI11 says only "A subcommand is required" for a mistyped command; name it instead.
+  const auto known =
+      app.get_subcommands([&](const CLI::App* sub) { return argc > 1 && sub->get_name() == argv[1]; });
+  if (argc > 1 && argv[1][0] != '-' && known.empty()) {
+    std::fprintf(stderr, "sandbox: unknown command '%s' (commands: mesh, bench; see --help)\n", argv[1]);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -22,9 +22,11 @@ struct ControlMesh {
   std::vector<Eigen::Vector3d> points_m;           ///< rest positions of the control points [m]
   std::vector<std::array<uint32_t, 3>> triangles;  ///< closed convex surface, outward (CCW) winding
   std::vector<ControlEdge> edges;                  ///< every edge once, with its two wings
-  Eigen::Vector3d centre_of_mass_m{0, 0, 0};       ///< centroid of the solid hull (uniform density) [m]
-  double volume_m3 = 0;                            ///< volume enclosed by the surface [m^3]
-  std::size_t hull_vertex_count = 0;               ///< vertices of the full convex hull, before LOD
+  /// Centre of mass of the body [m]: the centroid of its full convex hull as a uniform solid (for a
+  /// control mesh too coarse to enclose that point, the centroid of the control mesh's own solid).
+  Eigen::Vector3d centre_of_mass_m{0, 0, 0};
+  double volume_m3 = 0;               ///< volume enclosed by the surface [m^3]
+  std::size_t hull_vertex_count = 0;  ///< vertices of the full convex hull, before LOD
   /// For a body symmetric about its X-Z plane (y -> -y): the index of each point's mirror image (itself
   /// on the plane). Empty when the body is not symmetric or the method does not keep symmetry.
   std::vector<uint32_t> mirror_of;
