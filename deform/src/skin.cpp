@@ -172,18 +172,22 @@ std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector
 
 namespace {
 
-/// One vertex, scalar: the reference form of v'_j = v_j + sum_k w_jk d_(i_jk).
+// Both forms sum the even and the odd influences separately and add the two sums to the rest position:
+// two short dependency chains instead of one long one, and the same order of operations in both, so the
+// scalar and the SSE forms give bit-identical results.
+
+/// One vertex, scalar: v'_j = v_j + sum_k w_jk d_(i_jk).
 template <class Index>
 inline void deformVertexScalar(const Eigen::Vector3f& rest, const Index* idx, const float* w, std::size_t K,
                                const float* d, Eigen::Vector3f& out) {
-  float x = rest.x(), y = rest.y(), z = rest.z();
+  float even[3] = {0, 0, 0}, odd[3] = {0, 0, 0};
   for (std::size_t k = 0; k < K; ++k) {
     const float* di = d + 4 * static_cast<std::size_t>(idx[k]);
-    x += w[k] * di[0];
-    y += w[k] * di[1];
-    z += w[k] * di[2];
+    float* sum = (k % 2 == 0) ? even : odd;
+    for (int a = 0; a < 3; ++a) sum[a] += w[k] * di[a];
   }
-  out = Eigen::Vector3f(x, y, z);
+  out = Eigen::Vector3f(rest.x() + (even[0] + odd[0]), rest.y() + (even[1] + odd[1]),
+                        rest.z() + (even[2] + odd[2]));
 }
 
 template <std::size_t KFixed, class Index>
@@ -199,11 +203,18 @@ void deformRangeImpl(const Eigen::Vector3f* rest, const Index* indices, const fl
   for (; j + 1 < end; ++j) {
     const Index* idx = indices + j * K;
     const float* w = weights + j * K;
-    __m128 acc = _mm_loadu_ps(rest[j].data());
-    for (std::size_t k = 0; k < K; ++k)
-      acc = _mm_add_ps(acc,
-                       _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
-    _mm_storeu_ps(out[j].data(), acc);
+    __m128 even = _mm_setzero_ps(), odd = _mm_setzero_ps();
+    std::size_t k = 0;
+    for (; k + 1 < K; k += 2) {
+      even = _mm_add_ps(even,
+                        _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
+      odd = _mm_add_ps(
+          odd, _mm_mul_ps(_mm_set1_ps(w[k + 1]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k + 1]))));
+    }
+    if (k < K)
+      even = _mm_add_ps(even,
+                        _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
+    _mm_storeu_ps(out[j].data(), _mm_add_ps(_mm_loadu_ps(rest[j].data()), _mm_add_ps(even, odd)));
   }
 #endif
   for (; j < end; ++j) deformVertexScalar(rest[j], indices + j * K, weights + j * K, K, d, out[j]);
