@@ -335,3 +335,22 @@ TEST_CASE("a convex mesh from the importer is an obstacle (jersey barrier)", "[v
   CHECK(world.car(id).bodyPose().position_m.x() < 10);
   CHECK(engineMessageCount() == 0);
 }
+
+TEST_CASE("contacts report the force they applied: a resting box weighs on the ground", "[vehicle][world]") {
+  World world;
+  const ObstacleId box =
+      world.addConvexMesh(deform::makeBox({1, 1, 0.5}, 200), Pose::yawed({0, 0, 0.25}, 0.3), 80);
+  for (int i = 0; i < 200; ++i) world.step();  // 0.4 s: before it falls asleep (then nothing is solved)
+  Eigen::Vector3d on_box = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (const auto& c : world.contacts()) {
+    const bool box_is_a = c.a == EntityRef{EntityRef::Kind::Obstacle, box};
+    on_box += box_is_a ? c.force_on_a_N : Eigen::Vector3d(-c.force_on_a_N);
+    ++count;
+    // The normal points from b into a.
+    CHECK(c.normal.z() == Approx(box_is_a ? 1.0 : -1.0).margin(1e-6));
+  }
+  CHECK(count >= 3);
+  CHECK(on_box.z() == Approx(80 * 9.81).epsilon(0.01));
+  CHECK(on_box.head<2>().norm() < 0.02 * 80 * 9.81);  // friction only balances solver noise
+}

@@ -11,6 +11,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <mutex>
 #include <string>
 
@@ -32,16 +33,6 @@ void installHandlers() {
 }
 
 constexpr uint32_t kCarKind = 0, kObstacleKind = 1;
-
-/// Free obstacles sleep after half a second below 1 cm/s and 0.01 rad/s (DESIGN.md section 8: no work
-/// for what does not move; a standing tree does not creep); a contact with a moving body or a wheel
-/// standing on them wakes them.
-void allowSleep(dBodyID body) {
-  dBodySetAutoDisableFlag(body, 1);
-  dBodySetAutoDisableLinearThreshold(body, 0.01);
-  dBodySetAutoDisableAngularThreshold(body, 0.01);
-  dBodySetAutoDisableTime(body, 0.5);
-}
 
 std::string fieldMessage(const char* field, const std::string& rule, double value) {
   return std::string(field) + ": " + rule + " (got " + std::to_string(value) + ")";
@@ -112,6 +103,8 @@ struct World::Impl {
   std::vector<std::unique_ptr<Car>> cars;
   std::vector<ObstacleEntry> obstacles;
   std::vector<ContactPoint> contacts;
+  std::deque<dJointFeedback> feedback;  ///< one per contact; a deque so ODE's pointers stay valid
+  std::vector<double> feedback_sign;    ///< -1 where ODE's body 1 is b (a is static): f1 acts on b
   std::vector<dContact> scratch;
   unsigned long random_seed = 0;  ///< ODE's quick-step shuffle seed, owned by this world
   double time_s = 0, accumulator_s = 0;
@@ -144,6 +137,9 @@ struct World::Impl {
       c.surface.soft_cfm = self->settings.contact_cfm;
       dJointID joint = dJointCreateContact(self->world, self->contact_joints, &c);
       dJointAttach(joint, b1, b2);
+      self->feedback.emplace_back();
+      self->feedback_sign.push_back(b1 == nullptr ? -1.0 : 1.0);
+      dJointSetFeedback(joint, &self->feedback.back());
       self->contacts.push_back(
           {entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal), c.geom.depth});
     }
@@ -183,7 +179,7 @@ struct World::Impl {
       dBodySetMass(entry.body, &mass);
       dGeomSetBody(entry.geom, entry.body);
       ode::setBodyPose(entry.body, placed);
-      allowSleep(entry.body);
+      dBodySetAutoDisableFlag(entry.body, 1);
     } else {
       ode::setGeomPose(entry.geom, placed);
     }
@@ -243,6 +239,14 @@ World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
   dWorldSetQuickStepNumIterations(m.world, settings.solver_iterations);
   dWorldSetContactSurfaceLayer(m.world, 0.001);
   dWorldSetContactMaxCorrectingVel(m.world, 5.0);
+  // Free obstacles (not cars) may sleep after half a second below 1 cm/s and 0.01 rad/s (DESIGN.md
+  // section 8: no work for what does not move; a standing tree does not creep). A contact with a moving
+  // body or a wheel standing on them wakes them. Bodies take these defaults when created.
+  dWorldSetAutoDisableFlag(m.world, 0);
+  dWorldSetAutoDisableLinearThreshold(m.world, 0.01);
+  dWorldSetAutoDisableAngularThreshold(m.world, 0.01);
+  dWorldSetAutoDisableTime(m.world, 0.5);
+  dWorldSetAutoDisableSteps(m.world, static_cast<int>(std::ceil(0.5 * settings.physics_rate_hz)));
   if (settings.ground) addGround(0.0, settings.ground_friction);
 }
 
@@ -378,7 +382,7 @@ ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, 
   dGeomSetBody(entry.geom, entry.body);
   ode::setBodyPose(entry.body,
                    {base_m + Eigen::Vector3d(0, 0, 0.5 * height_m), Eigen::Quaterniond::Identity()});
-  allowSleep(entry.body);
+  dBodySetAutoDisableFlag(entry.body, 1);
   entry.local.type = ShapeType::Cylinder;
   entry.local.radius_m = radius_m;
   entry.local.a_m = {0, 0, -0.5 * height_m};
@@ -452,11 +456,15 @@ void World::step() {
   const double dt = fixedDt_s();
   for (auto& c : m.cars) c->applyForces(dt);
   m.contacts.clear();
+  m.feedback.clear();
+  m.feedback_sign.clear();
   dSpaceCollide(m.space, &m, &Impl::nearCallback);
   // ODE's quick step shuffles constraints with one global random seed: give it this world's own.
   dRandSetSeed(m.random_seed);
   dWorldQuickStep(m.world, dt);
   m.random_seed = dRandGetSeed();
+  for (std::size_t i = 0; i < m.contacts.size(); ++i)
+    m.contacts[i].force_on_a_N = m.feedback_sign[i] * ode::vec(m.feedback[i].f1);
   dJointGroupEmpty(m.contact_joints);
   m.time_s += dt;
   ++m.steps;

@@ -57,6 +57,9 @@ struct ContactPoint {
   Eigen::Vector3d position_m{0, 0, 0};  ///< world [m]
   Eigen::Vector3d normal{0, 0, 1};      ///< unit, world, pointing from b into a
   double depth_m = 0;                   ///< penetration [m]
+  /// Force the contact applied to `a` during the step (on `b`: its opposite; static obstacles take
+  /// none); times the step it is the contact impulse [N].
+  Eigen::Vector3d force_on_a_N{0, 0, 0};
 };
 
 /// Where a car starts.
