@@ -258,3 +258,96 @@ TEST_CASE("wheel state for drawing: rolling, steering, riding", "[vehicle][drivi
     (car.wheelSettings()[i].centre_m.y() > 0 ? load_left : load_right) += car.wheels()[i].normal_load_N;
   CHECK(load_right > load_left);
 }
+
+TEST_CASE("coasting and bouncing never create energy", "[vehicle][driving]") {
+  World world;
+  CarStart start;
+  start.speed_mps = 20;
+  start.position_m = {0, 0, 0.3};  // dropped from 30 cm while rolling
+  Car& car = world.car(world.addCar(sedan(), {}, start));
+  auto energy = [&] {
+    const Eigen::Vector3d w = car.angularVelocity_rad_s();
+    const Eigen::Matrix3d r = car.bodyPose().orientation.toRotationMatrix();
+    const Eigen::Matrix3d inertia_world = r * car.inertia_kg_m2() * r.transpose();
+    double e = 0.5 * car.mass_kg() * car.velocity_mps().squaredNorm() + 0.5 * w.dot(inertia_world * w) +
+               car.mass_kg() * 9.81 * car.bodyPose().position_m.z();
+    for (std::size_t i = 0; i < car.wheels().size(); ++i) {
+      const double spin = car.wheels()[i].tyre.spin_rad_s;
+      e += 0.5 * car.wheelSettings()[i].inertia_kg_m2 * spin * spin;
+      // Spring energy of the suspension.
+      const double c = car.wheels()[i].compression_m;
+      e += 0.5 * car.wheelSettings()[i].spring_N_per_m * c * c;
+    }
+    return e;
+  };
+  const double e0 = energy();
+  double highest = e0, previous = e0;
+  for (int i = 0; i < 5000; ++i) {
+    DriverInput input;
+    input.steering = 0.1 * std::sin(0.002 * i);
+    car.setInput(input);
+    world.step();
+    const double e = energy();
+    highest = std::max(highest, e);
+    previous = e;
+  }
+  std::printf("[figure] coasting 10 s from 20 m/s: energy %.0f J -> %.0f J, highest %.0f J\n", e0, previous,
+              highest);
+  CHECK(highest <= e0 * 1.001);
+  CHECK(previous < e0);
+}
+
+TEST_CASE("a long parked run stays put and finite", "[vehicle][driving]") {
+  World world;
+  Car& car = world.car(world.addCar(sedan()));
+  DriverInput input;
+  input.handbrake = true;
+  car.setInput(input);
+  const Eigen::Vector3d start = car.bodyPose().position_m;
+  for (int i = 0; i < 100000; ++i) world.step();
+  CHECK((car.bodyPose().position_m - start).norm() < 1e-6);
+  for (const auto& w : car.wheels()) CHECK(std::isfinite(w.tyre.lateral_deflection_m));
+}
+
+TEST_CASE("from 1 kg to 40 t: scaled settings sit level and drive", "[vehicle][driving]") {
+  for (double mass : {1.0, 40000.0}) {
+    World world;
+    VehicleSettings settings;
+    settings.wheels = wheelsFromModel(settings, sedan());
+    settings = settingsForMass(settings, mass);
+    Car& car = world.car(world.addCar(sedan(), settings));
+    DriverInput input;
+    input.throttle = 0.5;
+    car.setInput(input);
+    for (int i = 0; i < 2500; ++i) world.step();
+    CAPTURE(mass);
+    CHECK(car.forwardSpeed_mps() > 8);  // the same 9.5 m/s whatever the mass
+    CHECK(std::abs(vehicle_test::roll_rad(car.bodyPose())) < 0.01);
+    input = {};
+    input.brake = 1;
+    car.setInput(input);
+    for (int i = 0; i < 2500; ++i) world.step();
+    CHECK(std::abs(car.forwardSpeed_mps()) < 0.01);
+    CHECK(std::abs(vehicle_test::pitch_rad(car.bodyPose())) < 0.01);
+  }
+}
+
+TEST_CASE("coasting slows by drag and rolling resistance only", "[vehicle][driving]") {
+  World world;
+  CarStart start;
+  start.speed_mps = 100 * kKmh;
+  Car& car = world.car(world.addCar(sedan(), {}, start));
+  const VehicleSettings& s = car.settings();
+  // The same deceleration integrated alone: m dv/dt = -1/2 rho C_d A v^2 - C_rr m g.
+  double v = start.speed_mps;
+  const double dt = world.fixedDt_s();
+  for (int i = 0; i < 10 * 500; ++i) {
+    world.step();
+    v -= dt *
+         (0.5 * s.air_density_kg_m3 * s.drag_area_m2 * v * v / s.mass_kg + s.tyre.rolling_resistance * 9.81);
+  }
+  std::printf(
+      "[figure] coasting 10 s from 100 km/h: %.2f m/s (drag and rolling resistance alone: %.2f m/s)\n",
+      car.forwardSpeed_mps(), v);
+  CHECK(car.forwardSpeed_mps() == Approx(v).epsilon(0.01));
+}

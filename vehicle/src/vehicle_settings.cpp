@@ -98,6 +98,24 @@ std::vector<WheelSettings> wheelsFromModel(const VehicleSettings& settings,
   return wheelsFromBoundingBox(deform::boundingBox(model.body));
 }
 
+VehicleSettings settingsForMass(const VehicleSettings& settings, double mass_kg) {
+  requirePositive(mass_kg, "settingsForMass", "mass_kg");
+  VehicleSettings out = settings;
+  const double ratio = mass_kg / settings.mass_kg;
+  out.mass_kg = mass_kg;
+  out.engine_torque_Nm *= ratio;
+  out.max_power_W *= ratio;
+  out.handbrake_torque_Nm *= ratio;
+  out.drag_area_m2 *= ratio;
+  for (auto& w : out.wheels) {
+    w.spring_N_per_m *= ratio;
+    w.damper_N_s_per_m *= ratio;
+    w.brake_torque_Nm *= ratio;
+    w.inertia_kg_m2 *= ratio;
+  }
+  return out;
+}
+
 void checkVehicleSettings(const VehicleSettings& s, const char* source_c) {
   const std::string source = source_c ? source_c : "vehicle";
   requirePositive(s.mass_kg, source, "mass_kg");

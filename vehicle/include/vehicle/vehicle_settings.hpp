@@ -105,6 +105,13 @@ std::vector<WheelSettings> wheelsFromBoundingBox(const deform::Aabb& box);
 std::vector<WheelSettings> wheelsFromModel(const VehicleSettings& settings,
                                            const deform::VehicleModel& model);
 
+/// `settings` for a vehicle of `mass_kg` instead: springs, dampers, brake, handbrake and engine torques,
+/// power, drag area and wheel inertias scaled by the mass ratio, so ride frequency, damping ratio, static
+/// compression and accelerations stay those of the original (for the 1 kg .. 40 t stress range). Wheels
+/// given in `settings` are scaled; wheels taken later from a model get the default 1500 kg values, so
+/// give them here (wheelsFromModel) before scaling.
+VehicleSettings settingsForMass(const VehicleSettings& settings, double mass_kg);
+
 /// Refuses settings that cannot drive: a non-finite or non-positive mass, radius, inertia, spring,
 /// relaxation length or rate, negative damping or torques, fewer than three wheels. Throws
 /// deform::InputError whose message starts with `source` and names the field.
