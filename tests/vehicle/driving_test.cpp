@@ -351,3 +351,19 @@ TEST_CASE("coasting slows by drag and rolling resistance only", "[vehicle][drivi
       car.forwardSpeed_mps(), v);
   CHECK(car.forwardSpeed_mps() == Approx(v).epsilon(0.01));
 }
+
+TEST_CASE("reverse gear drives backwards; the handbrake holds against the engine", "[vehicle][driving]") {
+  World world;
+  Car& car = world.car(world.addCar(sedan()));
+  DriverInput input;
+  input.throttle = 0.3;
+  input.reverse = true;
+  car.setInput(input);
+  for (int i = 0; i < 1000; ++i) world.step();
+  CHECK(car.forwardSpeed_mps() < -1.5);
+  input = {};
+  input.brake = 1;
+  car.setInput(input);
+  for (int i = 0; i < 1500; ++i) world.step();
+  CHECK(std::abs(car.forwardSpeed_mps()) < 0.01);
+}

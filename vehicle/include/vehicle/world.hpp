@@ -1,7 +1,8 @@
 #pragma once
 // The ODE world (double precision) with its cars and obstacles, stepped at a fixed physics rate.
 // Deterministic: the same calls give bit-identical states (stateHash), whatever else the process did
-// (ODE's solver shuffles with a global seed; each World keeps its own).
+// (ODE's solver shuffles with a global seed; each World keeps its own). Worlds may live side by side
+// but must step on one thread at a time (that seed and ODE's per-thread collision data).
 #include <vehicle/car.hpp>
 #include <vehicle/obstacle_shape.hpp>
 #include <vehicle/pose.hpp>
