@@ -188,7 +188,9 @@ struct World::Impl {
 
   CarId addCar(const deform::ControlMesh& hull, const VehicleSettings& car_settings,
                std::vector<WheelSettings> wheels, const CarStart& start) {
-    checkVehicleSettings(car_settings);
+    VehicleSettings resolved = car_settings;  // check the wheels actually used (model or bounding box too)
+    resolved.wheels = wheels;
+    checkVehicleSettings(resolved);
     if (wheels.size() < 3)
       throw deform::InputError("vehicle: wheels: a car needs at least 3 (got " +
                                std::to_string(wheels.size()) + ")");
