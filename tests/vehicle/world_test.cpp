@@ -354,3 +354,31 @@ TEST_CASE("contacts report the force they applied: a resting box weighs on the g
   CHECK(on_box.z() == Approx(80 * 9.81).epsilon(0.01));
   CHECK(on_box.head<2>().norm() < 0.02 * 80 * 9.81);  // friction only balances solver noise
 }
+
+TEST_CASE("a car's contacts in its vehicle frame: the wall pushes its nose back", "[vehicle][world]") {
+  World world;
+  CarStart start;
+  start.speed_mps = 15 * kKmh;
+  start.heading_rad = 0.7;  // the vehicle frame is turned against the world
+  const CarId id = world.addCar(sedan(), {}, start);
+  const Eigen::Vector3d ahead(std::cos(0.7), std::sin(0.7), 0);
+  const ObstacleId wall = world.addWall(Pose::yawed(Eigen::Vector3d(0, 0, 1) + 8 * ahead, 0.7), {0.4, 6, 2});
+  Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
+  int count = 0;
+  double front = -1e9;
+  for (const auto& p : world.car(id).collisionHull().points_m) front = std::max(front, p.x());
+  for (int i = 0; i < 1000; ++i) {
+    world.step();
+    for (const CarContact& c : world.carContacts(id)) {
+      if (!(c.other == EntityRef{EntityRef::Kind::Obstacle, wall})) continue;
+      ++count;
+      impulse += c.impulse_N_s;
+      CHECK(c.normal.x() < -0.9);          // out of the wall, back along the car
+      CHECK(c.point_m.x() > front - 0.3);  // at the nose
+    }
+  }
+  CHECK(count > 0);
+  // The wall took the car's momentum (and gave a little back): impulse backwards, about m v.
+  CHECK(impulse.x() < -0.8 * 1500 * 15 * kKmh);
+  CHECK(std::abs(impulse.y()) < 0.1 * std::abs(impulse.x()));
+}

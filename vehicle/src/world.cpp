@@ -501,6 +501,26 @@ const std::vector<ContactPoint>& World::contacts() const {
   return impl_->contacts;
 }
 
+std::vector<CarContact> World::carContacts(CarId id) const {
+  const EntityRef self{EntityRef::Kind::Car, id};
+  const Pose frame = car(id).vehiclePose();
+  const Eigen::Quaterniond to_vehicle = frame.orientation.conjugate();
+  std::vector<CarContact> out;
+  for (const ContactPoint& c : impl_->contacts) {
+    if (!(c.a == self) && !(c.b == self)) continue;
+    // ODE's normal points from b into a; the force is on a.
+    const double sign = c.a == self ? 1.0 : -1.0;
+    CarContact contact;
+    contact.other = c.a == self ? c.b : c.a;
+    contact.point_m = frame.toLocal(c.position_m);
+    contact.normal = to_vehicle * (sign * c.normal);
+    contact.depth_m = c.depth_m;
+    contact.impulse_N_s = to_vehicle * (sign * c.force_on_a_N * fixedDt_s());
+    out.push_back(contact);
+  }
+  return out;
+}
+
 uint64_t World::stateHash() const {
   std::vector<double> values;
   for (const auto& c : impl_->cars) c->appendState(values);

@@ -63,6 +63,15 @@ struct ContactPoint {
   Eigen::Vector3d force_on_a_N{0, 0, 0};
 };
 
+/// A contact seen from one car, in its vehicle frame (what the deformation side takes each step).
+struct CarContact {
+  EntityRef other;                       ///< what the car touches
+  Eigen::Vector3d point_m{0, 0, 0};      ///< contact point, vehicle frame [m]
+  Eigen::Vector3d normal{0, 0, 1};       ///< unit, vehicle frame, out of `other` into the car
+  double depth_m = 0;                    ///< penetration [m]
+  Eigen::Vector3d impulse_N_s{0, 0, 0};  ///< impulse on the car during the step, vehicle frame [N s]
+};
+
 /// Where a car starts.
 struct CarStart {
   /// With on_ground: the ground point under the vehicle frame's origin (the car is lifted so its tyres
@@ -140,6 +149,9 @@ class World {
 
   /// Contacts between bodies (chassis, obstacles) found in the last step.
   const std::vector<ContactPoint>& contacts() const;
+
+  /// The last step's contacts of car `id`, turned into its vehicle frame at the pose it has now.
+  std::vector<CarContact> carContacts(CarId id) const;
 
   /// FNV-1a (64 bit) over the bytes of every body's position, orientation, linear and angular velocity
   /// and every wheel's state, in creation order.
