@@ -1,0 +1,74 @@
+#pragma once
+// The immutable part of a deformable body (DESIGN.md section 4, as Jolt's SoftBodySharedSettings):
+// built once from a control mesh and its mass split, shared by every car that uses it.
+#include <deform/constraints.hpp>
+#include <deform/control_mesh.hpp>
+#include <deform/masses.hpp>
+#include <deform/material.hpp>
+#include <deform/mesh.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace deform {
+
+/// A part of the car with its own material (a soft bumper, stiff roof pillars). A control point belongs
+/// to the region when it lies in `box_m` (vehicle frame) or is listed in `points`. A constraint takes
+/// the material of the last region holding all its control points (the core never counts); others keep
+/// the body's default.
+struct MaterialRegion {
+  Material material;             ///< the region's material
+  std::optional<Aabb> box_m;     ///< selection box in the vehicle frame [m]; none = by index only
+  std::vector<uint32_t> points;  ///< control points selected by index
+  /// Visual-constraint radius for the region's points [m]; NaN keeps the body's value.
+  double max_deviation_m = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// What a body is made of, besides its control mesh and masses.
+struct BodyDescription {
+  Material material;                    ///< default material of every constraint
+  std::vector<MaterialRegion> regions;  ///< later regions win over earlier ones
+  /// Visual constraint (Kenwright 2015): no control point moves further than this from where it started
+  /// [m]. Finite and > 0.
+  double max_deviation_m = 0.3;
+  /// Per-point overrides of max_deviation_m, (control point, radius [m]); applied after the regions.
+  std::vector<std::pair<uint32_t, double>> max_deviation_overrides;
+};
+
+struct BodySettings {
+  std::vector<Eigen::Vector3d> rest_positions_m;  ///< control points where they started, x0 [m]
+  Eigen::Vector3d core_m{0, 0, 0};                ///< the rigid core (centre of mass), vehicle frame [m]
+  std::vector<double> mass_kg;                    ///< point masses from the tetrahedral fan [kg]
+  std::vector<double> inverse_mass_per_kg;        ///< 1 / mass [1/kg]
+  double core_mass_kg = 0;                        ///< the core's share (infinite in the solver) [kg]
+  std::vector<double> max_deviation_m;            ///< visual-constraint radius per point [m]
+  /// Inverse of the shell's inertia about the core, sum m (|r|^2 I - r r^T) with r = x0 - core, for the
+  /// shell orientation constraint (removeShellRotation) [1/(kg m^2)].
+  Eigen::Matrix3d shell_inverse_inertia = Eigen::Matrix3d::Zero();
+
+  std::vector<EdgeConstraint> edges;    ///< hull edges
+  std::vector<SpokeConstraint> spokes;  ///< one per control point
+  std::vector<BendConstraint> bends;    ///< one per hull edge shared by two triangles
+  std::vector<double> edge_rest_m;      ///< original rest lengths L0, one per edge [m]
+  std::vector<double> spoke_rest_m;     ///< original rest lengths L0, one per spoke [m]
+  std::vector<double> bend_rest_m;      ///< original rest lengths L0, one per bend [m]
+
+  std::vector<Material> materials;       ///< [0] = the default, then one per region
+  std::vector<PlasticLaw> plastic_laws;  ///< the plasticity part of each material, same indexing
+
+  std::size_t pointCount() const { return rest_positions_m.size(); }
+  std::size_t constraintCount() const { return edges.size() + spokes.size() + bends.size(); }
+};
+
+/// Builds the constraint arrays (edges, spokes, bends), inverse masses and per-constraint compliances.
+/// A point mass that is not positive (a control point with no tetrahedron volume) gets 1e-3 of the mean
+/// point mass, so no inverse mass is infinite. Throws InputError naming the field for a mismatched mass
+/// split, a bad material, a region or override index out of range, or a deviation that is not finite
+/// and positive.
+BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses,
+                                const BodyDescription& description);
+
+}  // namespace deform

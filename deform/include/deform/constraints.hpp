@@ -1,0 +1,151 @@
+#pragma once
+// The constraint kinds of the deformable body, each a plain struct kept in its own array and solved by
+// its own loop, and the pure functions that project them (testable alone). XPBD: Macklin, Mueller,
+// Chentanez 2016, "XPBD: Position-Based Simulation of Compliant Constrained Dynamics":
+//   alpha~ = alpha / h^2                                  (the time-step scaled compliance)
+//   d_lambda = (-C - alpha~ lambda) / (grad C M^-1 grad C^T + alpha~)   (eq. 18)
+//   d_x = M^-1 grad C^T d_lambda                          (eq. 17)
+// with lambda reset to zero at the start of every substep (Macklin et al. 2019, "Small Steps").
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace deform {
+
+/// A hull edge between control points `a` and `b` (the shell's structure).
+struct EdgeConstraint {
+  uint32_t a = 0, b = 0;          ///< control points
+  uint32_t material = 0;          ///< index into BodySettings::materials
+  double compliance_m_per_N = 0;  ///< from the material [m/N]
+};
+
+/// A spoke from control point `point` to the rigid core (kinematic: it moves with the chassis).
+struct SpokeConstraint {
+  uint32_t point = 0;             ///< control point
+  uint32_t material = 0;          ///< index into BodySettings::materials
+  double compliance_m_per_N = 0;  ///< from the material [m/N]
+};
+
+/// Bending across the hull edge `hinge_a`-`hinge_b`: a distance constraint between the two wing
+/// vertices `left` and `right` (the "distance" bend of Jolt's soft bodies; Kenwright 2015 "Dynamics":
+/// a point-based bending term).
+/// On a convex hull the hinge is never flat at rest except on refined faces, where the spokes carry the
+/// out-of-plane load.
+struct BendConstraint {
+  uint32_t left = 0, right = 0;       ///< wing vertices, the constrained pair
+  uint32_t hinge_a = 0, hinge_b = 0;  ///< the shared edge (for reference and regions)
+  uint32_t material = 0;              ///< index into BodySettings::materials
+  double compliance_m_per_N = 0;      ///< from the material [m/N]
+};
+
+/// Below this length [m] a distance constraint has no direction and is skipped (numeric guard).
+inline constexpr double kMinConstraintLength_m = 1e-12;
+
+/// XPBD distance constraint C = |x_a - x_b| - rest (eq. 17, 18), Gauss-Seidel: moves `xa` and `xb`
+/// by their inverse masses [1/kg] and accumulates the multiplier `lambda` [N s^2]. `alpha_tilde` is
+/// compliance / h^2 [1/kg]. Returns the constraint value C before the projection [m].
+inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa, double wb, double rest_m,
+                              double alpha_tilde, double& lambda) {
+  const Eigen::Vector3d d = xa - xb;
+  const double length = d.norm();
+  const double w = wa + wb;
+  if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
+  const double c = length - rest_m;
+  const double d_lambda = (-c - alpha_tilde * lambda) / (w + alpha_tilde);
+  lambda += d_lambda;
+  const Eigen::Vector3d n = d * (d_lambda / length);  // grad_xa C * d_lambda
+  xa += wa * n;
+  xb -= wb * n;
+  return c;
+}
+
+/// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the kinematic core at `core_m`
+/// (infinite mass): the spoke (eq. 17, 18 with w_core = 0). Returns C before the projection [m].
+inline double projectSpoke(Eigen::Vector3d& x, const Eigen::Vector3d& core_m, double w, double rest_m,
+                           double alpha_tilde, double& lambda) {
+  const Eigen::Vector3d d = x - core_m;
+  const double length = d.norm();
+  if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
+  const double c = length - rest_m;
+  const double d_lambda = (-c - alpha_tilde * lambda) / (w + alpha_tilde);
+  lambda += d_lambda;
+  x += (w * d_lambda / length) * d;
+  return c;
+}
+
+/// Non-penetration of a point with an immovable obstacle, linearised as the half-space
+/// n . (x - surface) >= 0 for the substep (Mueller et al. 2007, "Position Based Dynamics": collision
+/// constraints generated once per step, solved with the others), with Coulomb friction at position
+/// level (Macklin et al. 2014, "Unified Particle Physics", eq. 24): the tangential travel since the
+/// substep began, `x_start` to `x`, is cancelled while within friction x the depth corrected, else
+/// shortened by that much. Moves `x` onto the surface when inside; returns the depth corrected [m].
+inline double projectContact(Eigen::Vector3d& x, const Eigen::Vector3d& x_start,
+                             const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m,
+                             double friction) {
+  const double c = normal.dot(x - surface_m);
+  if (c >= 0) return 0;
+  x -= c * normal;
+  if (friction > 0) {
+    const Eigen::Vector3d travel = x - x_start;
+    const Eigen::Vector3d tangential = travel - normal.dot(travel) * normal;
+    const double length = tangential.norm(), limit = -friction * c;
+    x -= length <= limit ? tangential : Eigen::Vector3d(tangential * (limit / length));
+  }
+  return -c;
+}
+
+/// Visual constraint (Kenwright 2015, "Visual Constraints"): |x - x0| <= max_deviation. Projects `x`
+/// onto the ball around its starting position `x0`; returns true when it moved it.
+inline bool projectVisual(Eigen::Vector3d& x, const Eigen::Vector3d& x0, double max_deviation_m) {
+  const Eigen::Vector3d d = x - x0;
+  const double squared = d.squaredNorm();
+  if (squared <= max_deviation_m * max_deviation_m) return false;
+  x = x0 + d * (max_deviation_m / std::sqrt(squared));
+  return true;
+}
+
+/// Shell orientation: the closed triangulated shell is rigid as a framework (Cauchy), and spokes fix
+/// its translation, but nothing in edges, bends or spokes resists a rotation of the whole shell about
+/// the core: three zero-stiffness modes, which contacts sliding tangentially would excite. A real body is
+/// bolted to its chassis, so this global constraint ties the shell's mean rotation to the chassis:
+///   G(x) = sum_i m_i r_i x (x_i - x0_i) = 0,  r_i = x0_i - core
+/// (linear in x, so one PBD projection, d_x_i = mu x r_i with A mu = -G, A = sum_i m_i (|r_i|^2 I - r_i
+/// r_i^T) the shell's inertia about the core, meets it exactly). `inverse_inertia` is A^-1. A dent,
+/// being radial, has no rotation and is left alone.
+inline void removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0, const double* mass_kg,
+                                std::size_t n, const Eigen::Vector3d& core_m,
+                                const Eigen::Matrix3d& inverse_inertia) {
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) g += mass_kg[i] * (x0[i] - core_m).cross(x[i] - x0[i]);
+  const Eigen::Vector3d mu = -(inverse_inertia * g);
+  for (std::size_t i = 0; i < n; ++i) x[i] += mu.cross(x0[i] - core_m);
+}
+
+/// Plasticity of one constraint: the material constants it needs.
+struct PlasticLaw {
+  double yield_strain = 0;       ///< initial yield strain [1]
+  double hardening = 0;          ///< plastic / elastic modulus ratio [1]
+  double min_rest_fraction = 0;  ///< lower clamp of L / L0 [1]
+  double max_rest_fraction = 0;  ///< upper clamp of L / L0 [1]
+};
+
+/// Return map of the rest length (1D elastoplasticity with linear hardening): with the elastic strain
+/// e = (l - L) / L and the yield strain grown by hardening, e_y = yield + H |L - L0| / L0, a strain past
+/// e_y moves L towards l by L (|e| - e_y) / (1 + H); the result is clamped to
+/// [min, max] x L0. Returns the new rest length [m]; `length_m` is the current length l, `rest_m` is L
+/// and `original_rest_m` is L0.
+inline double plasticRestLength(double length_m, double rest_m, double original_rest_m,
+                                const PlasticLaw& law) {
+  if (!(rest_m > 0) || !(original_rest_m > 0)) return rest_m;
+  const double strain = (length_m - rest_m) / rest_m;
+  const double taken = std::abs(rest_m - original_rest_m) / original_rest_m;
+  const double yield = law.yield_strain + law.hardening * taken;
+  const double magnitude = std::abs(strain);
+  if (!(magnitude > yield)) return rest_m;
+  const double flow = rest_m * (magnitude - yield) / (1.0 + law.hardening);
+  const double moved = strain > 0 ? rest_m + flow : rest_m - flow;
+  return std::clamp(moved, law.min_rest_fraction * original_rest_m, law.max_rest_fraction * original_rest_m);
+}
+
+}  // namespace deform

@@ -1,0 +1,77 @@
+#pragma once
+// Obstacles a control point may not be inside, in the vehicle frame. Exact penetration for primitives;
+// a general convex shape given by its support function goes through libccd (MPR penetration).
+#include <Eigen/Core>
+#include <variant>
+#include <vector>
+
+namespace deform {
+
+/// The solid side of a plane: points with normal . x < offset_m are inside.
+struct HalfSpaceShape {
+  Eigen::Vector3d normal{0, 0, 1};  ///< unit outward normal of the obstacle's surface
+  double offset_m = 0;              ///< plane: normal . x = offset_m [m]
+};
+
+struct SphereShape {
+  Eigen::Vector3d centre_m{0, 0, 0};  ///< [m]
+  double radius_m = 0;                ///< [m]
+};
+
+/// An oriented box.
+struct BoxShape {
+  Eigen::Vector3d centre_m{0, 0, 0};                   ///< [m]
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  ///< columns: the box's unit axes in the vehicle frame
+  Eigen::Vector3d half_extents_m{0, 0, 0};             ///< half sizes along the axes [m]
+};
+
+/// A segment `a_m`-`b_m` swept by a sphere of `radius_m`.
+struct CapsuleShape {
+  Eigen::Vector3d a_m{0, 0, 0}, b_m{0, 0, 0};  ///< segment ends [m]
+  double radius_m = 0;                         ///< [m]
+};
+
+/// The point of a convex shape furthest along `direction` [m]; `user` is ConvexSupportShape::user.
+using SupportFunction = Eigen::Vector3d (*)(const void* user, const Eigen::Vector3d& direction);
+
+/// Any convex shape given by its support function, as libccd takes it (a plain function and a user
+/// pointer, so that shapes copy cheaply).
+struct ConvexSupportShape {
+  SupportFunction support = nullptr;  ///< required
+  const void* user = nullptr;         ///< handed to `support`; must outlive the step that uses the shape
+  Eigen::Vector3d centre_m{0, 0, 0};  ///< a point strictly inside the shape [m]
+  double bounding_radius_m = 0;       ///< every point of the shape is this close to centre_m [m]
+};
+
+using ContactShape = std::variant<HalfSpaceShape, SphereShape, BoxShape, CapsuleShape, ConvexSupportShape>;
+
+/// How to push a point out of an obstacle: move it by depth_m along normal.
+struct Penetration {
+  Eigen::Vector3d normal{0, 0, 1};  ///< unit direction out of the obstacle
+  double depth_m = 0;               ///< [m], > 0 when inside
+};
+
+/// True (and `out` filled) when `point_m` is inside `shape`. Exact for the primitives; MPR
+/// (ccdMPRPenetration) for a support shape.
+bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out);
+
+/// The convex hull of a point set (e.g. a jersey barrier's vertices) as a support shape. Owns its
+/// points; the shapes it hands out refer to it, so it must outlive them.
+class ConvexPoints {
+ public:
+  /// Throws InputError for no points or a non-finite one.
+  explicit ConvexPoints(std::vector<Eigen::Vector3d> points_m);
+  ConvexSupportShape shape() const;
+
+ private:
+  static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction);
+  std::vector<Eigen::Vector3d> points_m_;  ///< [m]
+  Eigen::Vector3d centre_m_{0, 0, 0};      ///< mean of the points [m]
+  double radius_m_ = 0;                    ///< furthest point from the centre [m]
+};
+
+/// Throws InputError naming `field` for a non-finite value, a zero normal, a negative radius or extent,
+/// or a support shape without a support function.
+void checkContactShape(const ContactShape& shape, const char* field);
+
+}  // namespace deform

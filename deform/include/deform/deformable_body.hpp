@@ -1,0 +1,82 @@
+#pragma once
+// A deformable car body: shared settings, its own state and the XPBD solver that steps it
+// (Macklin, Mueller, Chentanez 2016; substeps after Macklin et al. 2019; Kenwright 2015 "Dynamics").
+// One step, in the vehicle frame:
+//   impulses -> for each substep: predict (damping, inertial forces), find contacts, `iterations` sweeps
+//   of edges, spokes, bends and contacts, the shell orientation, the visual constraint (the last
+//   projection), plasticity (rest lengths only), v = (x - x_prev) / h.
+#include <deform/body_settings.hpp>
+#include <deform/body_state.hpp>
+#include <deform/solver_params.hpp>
+#include <deform/step_inputs.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace deform {
+
+/// What one step did.
+struct StepReport {
+  bool asleep = false;          ///< the step did no work
+  uint32_t contact_points = 0;  ///< control points found inside an obstacle (summed over substeps)
+  double plastic_work_J = 0;    ///< plastic work done during the step [J]
+  double max_speed_mps = 0;     ///< fastest control point at the end, relative to the chassis [m/s]
+};
+
+/// Energy of the body relative to the chassis (the core is kinematic).
+struct BodyEnergy {
+  double kinetic_J = 0;  ///< sum 1/2 m v^2 [J]
+  double elastic_J = 0;  ///< sum 1/2 C^2 / alpha over compliant constraints (XPBD eq. 4) [J]
+  double total_J() const { return kinetic_J + elastic_J; }
+};
+
+BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state);
+
+/// Largest |x - x0| over the control points [m].
+double maxDeviation(const BodySettings& settings, const BodyState& state);
+
+class DeformableBody {
+ public:
+  /// Throws InputError for bad solver parameters.
+  explicit DeformableBody(std::shared_ptr<const BodySettings> settings, const SolverParams& params = {});
+
+  /// Advances by dt_s [s]. Throws InputError naming "dt_s" for a time step that is zero, negative or
+  /// not finite, and naming the input for a non-finite impulse, an impulse on an unknown point or a bad
+  /// contact shape.
+  StepReport step(const StepInputs& inputs, double dt_s);
+
+  const BodySettings& settings() const { return *settings_; }
+  const BodyState& state() const { return state_; }
+  /// Replaces the state (a restored snapshot or a decoded damage record); sizes must match.
+  void setState(BodyState state);
+  const SolverParams& params() const { return params_; }
+  /// Throws InputError for bad parameters.
+  void setParams(const SolverParams& params);
+
+ private:
+  void substep(double h, const StepInputs& inputs, StepReport& report);
+  void findContacts(const StepInputs& inputs);
+  void plasticity(StepReport& report);
+  bool loadChanged() const;
+
+  /// A contact for one substep: point `point` must stay on the outer side of the plane through
+  /// `surface_m` with unit normal `normal`.
+  struct ContactPoint {
+    uint32_t point;
+    Eigen::Vector3d normal;
+    Eigen::Vector3d surface_m;
+  };
+
+  std::shared_ptr<const BodySettings> settings_;
+  SolverParams params_;
+  BodyState state_;
+  // Scratch, not state: reset every substep.
+  std::vector<Eigen::Vector3d> previous_m_;
+  std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
+  std::vector<ContactPoint> contacts_;
+  /// This step's inertial inputs, unscaled: g - a_c [m/s^2], omega [rad/s], alpha [rad/s^2].
+  Eigen::Vector3d load_mps2_{0, 0, 0}, omega_radps_{0, 0, 0}, alpha_radps2_{0, 0, 0};
+  double radius_m_ = 0;  ///< longest spoke at rest: reach of the angular terms [m]
+};
+
+}  // namespace deform

@@ -1,0 +1,35 @@
+#pragma once
+// The per-car knobs of the deformation solver: the speed/accuracy trade (substeps, iterations) and the
+// few physical parameters that are not the material's (damping, secondary motion, sleep).
+#include <cstdint>
+
+namespace deform {
+
+struct SolverParams {
+  /// Substeps per step (Macklin et al. 2019, "Small Steps"): each does prediction, `iterations`
+  /// Gauss-Seidel sweeps, the visual constraint, plasticity and the velocity update. >= 1.
+  uint32_t substeps = 4;
+  /// Gauss-Seidel sweeps over every constraint per substep. >= 1.
+  uint32_t iterations = 1;
+  /// Viscous drag on the control points' motion relative to the chassis, per unit mass [1/s]: with no
+  /// constraint acting, a speed decays as exp(-damping_per_s t) (applied exactly per substep, so it is
+  /// stable for any value). 0 = undamped. >= 0.
+  double damping_per_s = 2.0;
+  /// Scale of the inertial (fictitious) forces from the chassis's motion and of gravity (the paper's
+  /// secondary motion) [1]; 0 disables them. >= 0.
+  double inertial_scale = 1.0;
+  /// Sleep: when no contact acts and every control point is slower than this [m/s] ...
+  double sleep_speed_mps = 0.005;
+  /// ... for this long [s], steps do no work until a contact, an impulse or a change of the inertial load
+  /// wakes the body. A negative or infinite delay never sleeps.
+  double sleep_delay_s = 0.5;
+  /// Change of the inertial load (specific force [m/s^2], or angular velocity [rad/s] / angular
+  /// acceleration [rad/s^2] times 1 m) since the body fell asleep that wakes it.
+  double wake_load_mps2 = 0.05;
+};
+
+/// Throws InputError naming the member for substeps or iterations of 0, or a negative or non-finite
+/// damping, inertial scale or sleep speed.
+void checkSolverParams(const SolverParams& params);
+
+}  // namespace deform

@@ -1,0 +1,35 @@
+#pragma once
+// What acts on a deformable body during one step, all in the vehicle frame.
+#include <deform/contact_shapes.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace deform {
+
+/// An impulse on one control point, applied at the start of the step.
+struct PointImpulse {
+  uint32_t point = 0;                   ///< control point
+  Eigen::Vector3d impulse_Ns{0, 0, 0};  ///< [N s]
+};
+
+/// The chassis's motion, for the inertial (fictitious) forces on the control points in the vehicle
+/// frame, which accelerates and rotates: a = g - a_c - alpha x r - omega x (omega x r) - 2 omega x v,
+/// r from the core, v relative to the chassis (scaled by SolverParams::inertial_scale).
+struct ChassisMotion {
+  Eigen::Vector3d acceleration_mps2{0, 0, 0};            ///< of the core, in the vehicle frame [m/s^2]
+  Eigen::Vector3d angular_velocity_radps{0, 0, 0};       ///< [rad/s]
+  Eigen::Vector3d angular_acceleration_radps2{0, 0, 0};  ///< [rad/s^2]
+  Eigen::Vector3d gravity_mps2{0, 0, 0};                 ///< in the vehicle frame; 0 = no sag [m/s^2]
+};
+
+struct StepInputs {
+  std::vector<ContactShape> contacts;  ///< obstacles this step (immovable)
+  /// Coulomb friction coefficient between the control points and every obstacle [1]; 0 = frictionless.
+  double contact_friction = 0.5;
+  std::vector<PointImpulse> impulses;  ///< point impulses
+  ChassisMotion chassis;               ///< for inertial forces
+};
+
+}  // namespace deform

@@ -1,0 +1,171 @@
+// Point-in-obstacle queries: exact for half-space, sphere, box and capsule; libccd's MPR for a convex
+// shape given by its support function.
+#include <deform/contact_shapes.hpp>
+#include <deform/error.hpp>
+
+#include <ccd/ccd.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace deform {
+namespace {
+
+bool fromDistance(const Eigen::Vector3d& away, double radius_m, Penetration& out) {
+  const double distance = away.norm();
+  if (!(distance < radius_m)) return false;
+  out.normal = distance > 0 ? Eigen::Vector3d(away / distance) : Eigen::Vector3d::UnitZ();
+  out.depth_m = radius_m - distance;
+  return true;
+}
+
+bool inside(const HalfSpaceShape& s, const Eigen::Vector3d& x, Penetration& out) {
+  const double length = s.normal.norm();
+  const double signed_distance = (s.normal.dot(x) - s.offset_m) / length;
+  if (!(signed_distance < 0)) return false;
+  out.normal = s.normal / length;
+  out.depth_m = -signed_distance;
+  return true;
+}
+
+bool inside(const SphereShape& s, const Eigen::Vector3d& x, Penetration& out) {
+  return fromDistance(x - s.centre_m, s.radius_m, out);
+}
+
+bool inside(const BoxShape& s, const Eigen::Vector3d& x, Penetration& out) {
+  const Eigen::Vector3d local = s.axes.transpose() * (x - s.centre_m);
+  const Eigen::Vector3d room = s.half_extents_m - local.cwiseAbs();  // distance to each face pair
+  if (!(room.minCoeff() > 0)) return false;
+  Eigen::Index axis = 0;
+  room.minCoeff(&axis);  // the nearest face
+  out.depth_m = room[axis];
+  out.normal = s.axes.col(axis) * (local[axis] < 0 ? -1.0 : 1.0);
+  return true;
+}
+
+bool inside(const CapsuleShape& s, const Eigen::Vector3d& x, Penetration& out) {
+  const Eigen::Vector3d ab = s.b_m - s.a_m;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((x - s.a_m).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return fromDistance(x - (s.a_m + t * ab), s.radius_m, out);
+}
+
+// libccd glue: the obstacle is object 1, the control point (a single point) is object 2.
+struct PointObject {
+  Eigen::Vector3d point;
+};
+
+void toCcd(const Eigen::Vector3d& v, ccd_vec3_t* out) {
+  ccdVec3Set(out, v.x(), v.y(), v.z());
+}
+
+void supportOfShape(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+  const auto* shape = static_cast<const ConvexSupportShape*>(object);
+  toCcd(shape->support(shape->user, Eigen::Vector3d(ccdVec3X(dir), ccdVec3Y(dir), ccdVec3Z(dir))), out);
+}
+void centreOfShape(const void* object, ccd_vec3_t* out) {
+  toCcd(static_cast<const ConvexSupportShape*>(object)->centre_m, out);
+}
+void supportOfPoint(const void* object, const ccd_vec3_t*, ccd_vec3_t* out) {
+  toCcd(static_cast<const PointObject*>(object)->point, out);
+}
+void centreOfPoint(const void* object, ccd_vec3_t* out) {
+  toCcd(static_cast<const PointObject*>(object)->point, out);
+}
+
+bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, Penetration& out) {
+  if ((x - s.centre_m).squaredNorm() > s.bounding_radius_m * s.bounding_radius_m)
+    return false;  // broad phase
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = supportOfShape;
+  ccd.center1 = centreOfShape;
+  ccd.support2 = supportOfPoint;
+  ccd.center2 = centreOfPoint;
+  ccd.max_iterations = 100;
+  ccd.mpr_tolerance = 1e-9;
+  const PointObject point{x};
+  ccd_real_t depth = 0;
+  ccd_vec3_t dir, pos;
+  // "Computes penetration of obj2 into obj1": translating obj2 by depth along dir separates them.
+  if (ccdMPRPenetration(&s, &point, &ccd, &depth, &dir, &pos) != 0) return false;
+  const Eigen::Vector3d normal(ccdVec3X(&dir), ccdVec3Y(&dir), ccdVec3Z(&dir));
+  if (!(depth > 0) || !std::isfinite(depth) || !normal.allFinite() || normal.squaredNorm() == 0) return false;
+  out.normal = normal.normalized();
+  out.depth_m = depth;
+  return true;
+}
+
+void requireFinite(const Eigen::Vector3d& v, const std::string& field) {
+  if (!v.allFinite()) throw InputError(field + ": not finite");
+}
+void requireNonNegative(double value, const std::string& field) {
+  if (!std::isfinite(value) || value < 0)
+    throw InputError(field + ": must be finite and >= 0 (got " + std::to_string(value) + ")");
+}
+
+}  // namespace
+
+bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out) {
+  return std::visit([&](const auto& s) { return inside(s, point_m, out); }, shape);
+}
+
+ConvexPoints::ConvexPoints(std::vector<Eigen::Vector3d> points_m) : points_m_(std::move(points_m)) {
+  if (points_m_.empty()) throw InputError("convex shape: no points");
+  for (const auto& p : points_m_) {
+    if (!p.allFinite()) throw InputError("convex shape: a point is not finite");
+    centre_m_ += p;
+  }
+  centre_m_ /= static_cast<double>(points_m_.size());
+  double radius2 = 0;
+  for (const auto& p : points_m_) radius2 = std::max(radius2, (p - centre_m_).squaredNorm());
+  radius_m_ = std::sqrt(radius2);
+}
+
+ConvexSupportShape ConvexPoints::shape() const {
+  return {&ConvexPoints::support, this, centre_m_, radius_m_};
+}
+
+Eigen::Vector3d ConvexPoints::support(const void* user, const Eigen::Vector3d& direction) {
+  const auto& points = static_cast<const ConvexPoints*>(user)->points_m_;
+  std::size_t best = 0;
+  double best_dot = points[0].dot(direction);
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const double d = points[i].dot(direction);
+    if (d > best_dot) best_dot = d, best = i;
+  }
+  return points[best];
+}
+
+void checkContactShape(const ContactShape& shape, const char* field_name) {
+  const std::string field = field_name;
+  std::visit(
+      [&field](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, HalfSpaceShape>) {
+          requireFinite(s.normal, field + ".normal");
+          if (!(s.normal.norm() > 0)) throw InputError(field + ".normal: zero");
+          if (!std::isfinite(s.offset_m)) throw InputError(field + ".offset_m: not finite");
+        } else if constexpr (std::is_same_v<T, SphereShape>) {
+          requireFinite(s.centre_m, field + ".centre_m");
+          requireNonNegative(s.radius_m, field + ".radius_m");
+        } else if constexpr (std::is_same_v<T, BoxShape>) {
+          requireFinite(s.centre_m, field + ".centre_m");
+          if (!s.axes.allFinite()) throw InputError(field + ".axes: not finite");
+          for (int k = 0; k < 3; ++k) requireNonNegative(s.half_extents_m[k], field + ".half_extents_m");
+        } else if constexpr (std::is_same_v<T, CapsuleShape>) {
+          requireFinite(s.a_m, field + ".a_m");
+          requireFinite(s.b_m, field + ".b_m");
+          requireNonNegative(s.radius_m, field + ".radius_m");
+        } else {
+          if (!s.support) throw InputError(field + ".support: missing");
+          requireFinite(s.centre_m, field + ".centre_m");
+          requireNonNegative(s.bounding_radius_m, field + ".bounding_radius_m");
+        }
+      },
+      shape);
+}
+
+}  // namespace deform

@@ -1,0 +1,43 @@
+// Checks of the material and solver parameters where they enter (DESIGN.md section 9).
+#include <deform/error.hpp>
+#include <deform/material.hpp>
+#include <deform/solver_params.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace deform {
+namespace {
+
+void requireNonNegative(double value, const std::string& field) {
+  if (!std::isfinite(value) || value < 0)
+    throw InputError(field + ": must be finite and >= 0 (got " + std::to_string(value) + ")");
+}
+
+}  // namespace
+
+void checkMaterial(const Material& material, const std::string& field) {
+  requireNonNegative(material.edge_compliance_m_per_N, field + ".edge_compliance_m_per_N");
+  requireNonNegative(material.spoke_compliance_m_per_N, field + ".spoke_compliance_m_per_N");
+  requireNonNegative(material.bend_compliance_m_per_N, field + ".bend_compliance_m_per_N");
+  requireNonNegative(material.yield_strain, field + ".yield_strain");
+  requireNonNegative(material.hardening, field + ".hardening");
+  if (!(material.min_rest_fraction > 0 && material.min_rest_fraction <= 1))
+    throw InputError(field + ".min_rest_fraction: must be in (0, 1] (got " +
+                     std::to_string(material.min_rest_fraction) + ")");
+  if (!(material.max_rest_fraction >= 1 && std::isfinite(material.max_rest_fraction)))
+    throw InputError(field + ".max_rest_fraction: must be finite and >= 1 (got " +
+                     std::to_string(material.max_rest_fraction) + ")");
+}
+
+void checkSolverParams(const SolverParams& params) {
+  if (params.substeps < 1) throw InputError("substeps: must be at least 1 (got 0)");
+  if (params.iterations < 1) throw InputError("iterations: must be at least 1 (got 0)");
+  requireNonNegative(params.damping_per_s, "damping_per_s");
+  requireNonNegative(params.inertial_scale, "inertial_scale");
+  requireNonNegative(params.sleep_speed_mps, "sleep_speed_mps");
+  requireNonNegative(params.wake_load_mps2, "wake_load_mps2");
+  if (std::isnan(params.sleep_delay_s)) throw InputError("sleep_delay_s: must not be NaN");
+}
+
+}  // namespace deform

@@ -1,0 +1,57 @@
+// The constraint projections and the plastic return map alone (deform/constraints.hpp).
+#include <catch2/catch.hpp>
+#include <deform/constraints.hpp>
+
+using deform::PlasticLaw;
+
+TEST_CASE("a rigid distance constraint is met in one projection, moving by inverse mass", "[dynamics]") {
+  Eigen::Vector3d a(0, 0, 0), b(2, 0, 0);
+  double lambda = 0;
+  const double c = deform::projectDistance(a, b, 1.0, 3.0, 1.0, 0.0, lambda);
+  CHECK(c == Approx(1.0));
+  CHECK((a - b).norm() == Approx(1.0).margin(1e-15));
+  CHECK(a.x() == Approx(0.25));  // a takes 1/4 of the correction, b 3/4
+  CHECK(b.x() == Approx(1.25));
+}
+
+TEST_CASE("a compliant spoke under a constant load settles at alpha m g whatever the step", "[dynamics]") {
+  // One point mass hanging from the core on a spoke: XPBD's fixed point is exactly the spring's static
+  // deflection C = alpha m g (Macklin 2016: compliance is the inverse stiffness, independent of h).
+  const double mass_kg = 2.0, compliance = 1e-4, g = 9.81;
+  for (double h : {1.0 / 60, 1.0 / 600, 1.0 / 6000}) {
+    Eigen::Vector3d x(0, 0, -1), v(0, 0, 0);
+    const Eigen::Vector3d core(0, 0, 0);
+    for (int k = 0; k < static_cast<int>(3.0 / h); ++k) {
+      const Eigen::Vector3d previous = x;
+      v = v * std::exp(-20.0 * h) + Eigen::Vector3d(0, 0, -g * h);
+      x += h * v;
+      double lambda = 0;
+      deform::projectSpoke(x, core, 1.0 / mass_kg, 1.0, compliance / (h * h), lambda);
+      v = (x - previous) / h;
+    }
+    INFO("h = " << h);
+    CHECK(-x.z() - 1.0 == Approx(compliance * mass_kg * g).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("the plastic return map: elastic below yield, flows by the excess above, clamped", "[dynamics]") {
+  const PlasticLaw law{0.02, 0.0, 0.5, 1.5};
+  CHECK(deform::plasticRestLength(1.019, 1.0, 1.0, law) == 1.0);  // below yield: untouched
+  CHECK(deform::plasticRestLength(0.981, 1.0, 1.0, law) == 1.0);
+  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, law) == Approx(1.08));  // excess 0.08 taken
+  CHECK(deform::plasticRestLength(0.90, 1.0, 1.0, law) == Approx(0.92));
+  CHECK(deform::plasticRestLength(0.10, 1.0, 1.0, law) == Approx(0.5));  // clamp: never below half
+  CHECK(deform::plasticRestLength(9.0, 1.0, 1.0, law) == Approx(1.5));
+  // Hardening: with H = 1 half the excess flows, and the yield grows with the plastic strain taken.
+  const PlasticLaw hard{0.02, 1.0, 0.5, 1.5};
+  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, hard) == Approx(1.04));
+  CHECK(deform::plasticRestLength(1.10, 1.04, 1.0, hard) == 1.04);  // e = 0.0577 < 0.02 + 0.04
+}
+
+TEST_CASE("the visual constraint projects onto the ball around the start", "[dynamics]") {
+  Eigen::Vector3d x(3, 4, 0);
+  CHECK(deform::projectVisual(x, Eigen::Vector3d::Zero(), 1.0));
+  CHECK(x.norm() == Approx(1.0));
+  CHECK(x.x() == Approx(0.6));
+  CHECK_FALSE(deform::projectVisual(x, Eigen::Vector3d::Zero(), 2.0));
+}

@@ -1,0 +1,58 @@
+// Point-in-obstacle queries: exact primitives, and libccd's MPR on a support function.
+#include <catch2/catch.hpp>
+#include <deform/contact_shapes.hpp>
+#include <deform/error.hpp>
+
+#include <Eigen/Geometry>
+
+using namespace deform;
+
+TEST_CASE("exact penetration of the primitives", "[dynamics]") {
+  Penetration p;
+  CHECK(penetration(HalfSpaceShape{{0, 0, 2}, 1.0}, {0, 0, 0.25}, p));  // plane z = 0.5, normal unnormalised
+  CHECK(p.depth_m == Approx(0.25));
+  CHECK(p.normal.z() == Approx(1.0));
+  CHECK_FALSE(penetration(HalfSpaceShape{{0, 0, 1}, 0.5}, {0, 0, 0.6}, p));
+
+  CHECK(penetration(SphereShape{{1, 0, 0}, 0.5}, {1.2, 0, 0}, p));
+  CHECK(p.depth_m == Approx(0.3));
+  CHECK(p.normal.x() == Approx(1.0));
+
+  BoxShape box{
+      {0, 0, 0}, Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix(), {2, 1, 1}};
+  CHECK(penetration(box, {0.8, 0.1, 0.0}, p));  // box's local y is the frame's -x
+  CHECK(p.depth_m == Approx(0.2));
+  CHECK(p.normal.x() == Approx(1.0).margin(1e-12));
+
+  CHECK(penetration(CapsuleShape{{0, 0, 0}, {0, 0, 2}, 0.5}, {0.1, 0, 3.0}, p) == false);
+  CHECK(penetration(CapsuleShape{{0, 0, 0}, {0, 0, 2}, 0.5}, {0.4, 0, 1.0}, p));
+  CHECK(p.depth_m == Approx(0.1));
+}
+
+TEST_CASE("libccd's penetration of a support-function box matches the exact box", "[dynamics]") {
+  std::vector<Eigen::Vector3d> corners;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-0.5, 0.5})
+      for (double z : {-0.25, 0.25}) corners.emplace_back(x + 3.0, y, z);
+  const ConvexPoints points(corners);
+  const ConvexSupportShape hull = points.shape();
+  const BoxShape box{{3, 0, 0}, Eigen::Matrix3d::Identity(), {1, 0.5, 0.25}};
+  for (const Eigen::Vector3d& point : {Eigen::Vector3d(3.9, 0.1, 0.0), Eigen::Vector3d(3.2, 0.45, -0.1),
+                                       Eigen::Vector3d(2.5, -0.1, 0.2), Eigen::Vector3d(5, 0, 0)}) {
+    Penetration exact, mpr;
+    const bool in_exact = penetration(box, point, exact), in_mpr = penetration(hull, point, mpr);
+    INFO("point " << point.transpose());
+    REQUIRE(in_exact == in_mpr);
+    if (!in_exact) continue;
+    CHECK(mpr.depth_m == Approx(exact.depth_m).margin(1e-6));
+    CHECK((mpr.normal - exact.normal).norm() < 1e-6);
+  }
+}
+
+TEST_CASE("bad contact shapes are refused naming the field", "[dynamics]") {
+  CHECK_THROWS_WITH(checkContactShape(SphereShape{{0, 0, 0}, -1}, "contacts[0]"),
+                    Catch::Contains("contacts[0].radius_m"));
+  CHECK_THROWS_WITH(checkContactShape(HalfSpaceShape{{0, 0, 0}, 0}, "contacts[1]"),
+                    Catch::Contains("contacts[1].normal"));
+  CHECK_THROWS_AS(checkContactShape(ConvexSupportShape{}, "contacts[2]"), InputError);
+}
