@@ -22,6 +22,8 @@ namespace sandbox::gl {
   X(PFNGLDISABLEPROC, Disable)                                               \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
+  X(PFNGLCULLFACEPROC, CullFace)                                             \
+  X(PFNGLFRONTFACEPROC, FrontFace)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \

@@ -20,6 +20,7 @@ struct Renderer::GpuMesh {
   Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
   Eigen::Vector3f base_colour{0.8f, 0.8f, 0.8f};
   float specular = 0.35f, shininess = 60.0f;
+  bool closed = false;               ///< cull back faces (see MeshData::closed)
   Eigen::AlignedBox3f local_bounds;  ///< box of the current positions in the mesh frame
 
   ~GpuMesh() {
@@ -40,6 +41,17 @@ Eigen::AlignedBox3f boundsOf(const std::vector<Eigen::Vector3f>& points) {
 // sRGB -> linear light, as the shaders do (gamma 2.2), for colours passed as uniforms.
 Eigen::Vector3f linear(const Eigen::Vector3f& srgb) {
   return srgb.cwiseMax(0.0f).array().pow(2.2f).matrix();
+}
+
+// Culls `face` for closed meshes; everything else is drawn two-sided (imported meshes are not always
+// closed or consistently wound).
+void setCulling(bool closed, GLenum face) {
+  if (closed) {
+    gl::Enable(GL_CULL_FACE);
+    gl::CullFace(face);
+  } else {
+    gl::Disable(GL_CULL_FACE);
+  }
 }
 
 GLsizeiptr bytes(std::size_t count, std::size_t element) {
@@ -161,6 +173,7 @@ Renderer::MeshId Renderer::addMesh(const MeshData& data) {
   mesh->base_colour = data.base_colour;
   mesh->specular = data.specular;
   mesh->shininess = data.shininess;
+  mesh->closed = data.closed;
   mesh->local_bounds = boundsOf(data.positions_m);
 
   gl::GenVertexArrays(1, &mesh->vao);
@@ -261,11 +274,14 @@ void Renderer::renderShadowMap(const SunShadow& shadow) {
   shadow_program_.set("u_light_view_projection", shadow.light_view_projection);
   for (const auto& mesh : meshes_) {
     if (!mesh->visible || mesh->index_count == 0) continue;
+    // Closed meshes cast from their back faces: the lit front faces then never shadow themselves.
+    setCulling(mesh->closed, GL_FRONT);
     shadow_program_.set("u_model", mesh->model);
     gl::BindVertexArray(mesh->vao);
     gl::DrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, nullptr);
   }
   gl::Disable(GL_POLYGON_OFFSET_FILL);
+  gl::Disable(GL_CULL_FACE);
 }
 
 void Renderer::render(const Camera& camera, const Environment& environment) {
@@ -275,7 +291,7 @@ void Renderer::render(const Camera& camera, const Environment& environment) {
   const Ground& ground = environment.ground;
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LESS);
-  gl::Disable(GL_CULL_FACE);  // two-sided: imported meshes are not always closed or consistently wound
+  gl::FrontFace(GL_CCW);
 
   // 1. Sun shadow map, fitted to what casts shadows (nothing to do without meshes).
   const Eigen::AlignedBox3f casters = visibleBounds();
@@ -346,6 +362,7 @@ void Renderer::render(const Camera& camera, const Environment& environment) {
   setLighting(mesh_program_);
   for (const auto& mesh : meshes_) {
     if (!mesh->visible || mesh->index_count == 0) continue;
+    setCulling(mesh->closed, GL_BACK);
     mesh_program_.set("u_model", mesh->model);
     const Eigen::Matrix3f normal_matrix = mesh->model.topLeftCorner<3, 3>().inverse().transpose();
     mesh_program_.set("u_normal_matrix", normal_matrix);
@@ -357,6 +374,7 @@ void Renderer::render(const Camera& camera, const Environment& environment) {
     gl::DrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, nullptr);
   }
   gl::BindVertexArray(0);
+  gl::Disable(GL_CULL_FACE);
 
   // 3. Resolve the multisampled frame into the single-sample one that is read back.
   if (samples_ > 0) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace sandbox::render {
 
@@ -17,7 +18,36 @@ MeshData meshData(const deform::Mesh& mesh, const Eigen::Vector3f& base_colour) 
     data.normals = std::move(copy.normals);
   }
   data.base_colour = base_colour;
+  data.closed = isClosedOutward(mesh);
   return data;
+}
+
+bool isClosedOutward(const deform::Mesh& mesh) {
+  if (mesh.triangles.empty()) return false;
+  // Every directed edge a->b once, and its reverse b->a once: sort the keys and look each reverse up.
+  std::vector<uint64_t> edges;
+  edges.reserve(mesh.triangles.size() * 3);
+  for (const deform::Triangle& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      edges.push_back(uint64_t{t[static_cast<std::size_t>(k)]} << 32 |
+                      t[static_cast<std::size_t>((k + 1) % 3)]);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+  for (const uint64_t e : edges) {
+    const uint64_t reverse = (e << 32) | (e >> 32);
+    if (!std::binary_search(edges.begin(), edges.end(), reverse)) return false;
+  }
+  // Outward: the divergence theorem gives a positive volume for outward winding.
+  double six_volume = 0.0;
+  for (const deform::Triangle& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.positions_m[t[0]].cast<double>(),
+                          b = mesh.positions_m[t[1]].cast<double>(),
+                          c = mesh.positions_m[t[2]].cast<double>();
+    six_volume += a.dot(b.cross(c));
+  }
+  return six_volume > 0.0;
 }
 
 Environment environmentAround(const deform::Aabb& box) {
