@@ -6,6 +6,8 @@ namespace sandbox {
 
 void registerMeshCommands(CLI::App& app);
 void registerBenchCommands(CLI::App& app);
+/// `sandbox figures`, in cmd_figures.cpp.
+void registerFiguresCommand(CLI::App& app);
 
 /// `sandbox bench step` (deformation dynamics), in bench_step.cpp.
 void registerBenchStepCommand(CLI::App& bench);

@@ -5,17 +5,22 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"Real-time vehicle deformation sandbox"};
   app.require_subcommand(1);
   sandbox::registerMeshCommands(app);
   sandbox::registerBenchCommands(app);
+  sandbox::registerFiguresCommand(app);
   // CLI11 says only "A subcommand is required" for a mistyped command; name it instead.
   const auto known =
       app.get_subcommands([&](const CLI::App* sub) { return argc > 1 && sub->get_name() == argv[1]; });
   if (argc > 1 && argv[1][0] != '-' && known.empty()) {
-    std::fprintf(stderr, "sandbox: unknown command '%s' (commands: mesh, bench; see --help)\n", argv[1]);
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({}))
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    std::fprintf(stderr, "sandbox: unknown command '%s' (commands: %s)\n", argv[1], names.c_str());
     return 2;
   }
   try {

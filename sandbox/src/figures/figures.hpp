@@ -1,0 +1,31 @@
+#pragma once
+// `sandbox figures`: the paper's figures (Kenwright 2015) reproduced with our code. Each function
+// renders one figure to a PNG in `out_dir` and returns its file name and a line on what it shows.
+#include <string>
+#include <vector>
+
+namespace sandbox::figures {
+
+struct Figure {
+  std::string file;     ///< PNG file name inside the output folder
+  std::string caption;  ///< what the picture shows, with the measured figures behind it
+};
+
+struct FigureOptions {
+  std::string out_dir = "docs/figures";
+  int panel_width = 640;  ///< pixels per panel
+  int panel_height = 400;
+  int samples = 4;  ///< MSAA
+};
+
+/// Figure "Vehicle Convex Hull": (a) the mesh, (b) its convex hull, (c) control meshes of decreasing
+/// level of detail.
+Figure convexHullFigure(const FigureOptions& options);
+
+/// Figure "Control Point Weighting": one corner control point lifted; the mesh follows with alpha = 1..5.
+Figure weightingFigure(const FigureOptions& options);
+
+/// The drinks can and its control mesh.
+Figure canFigure(const FigureOptions& options);
+
+}  // namespace sandbox::figures
