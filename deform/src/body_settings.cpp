@@ -112,6 +112,15 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     s.edges.push_back({e.a, e.b, edge_material, s.materials[edge_material].edge_compliance_m_per_N});
     s.edge_rest_m.push_back((mesh.points_m[e.a] - mesh.points_m[e.b]).norm());
     if (e.left == e.right) continue;  // an open edge has no bend
+    // A bend across a nearly flat hinge adds no first-order bending stiffness (its gradient lies in the
+    // plane the edges already hold) but makes the four points a flat tetrahedron with all six distances
+    // fixed: ill-conditioned, it jitters under Gauss-Seidel. Such hinges get no bend.
+    const Eigen::Vector3d& pa = mesh.points_m[e.a];
+    const Eigen::Vector3d& pb = mesh.points_m[e.b];
+    const Eigen::Vector3d n1 = (pb - pa).cross(mesh.points_m[e.left] - pa);
+    const Eigen::Vector3d n2 = (pa - pb).cross(mesh.points_m[e.right] - pb);
+    const double fold_rad = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+    if (!(fold_rad >= description.min_bend_fold_rad)) continue;
     const uint32_t bend_material = materialOf<4>({e.a, e.b, e.left, e.right}, in_region);
     s.bends.push_back(
         {e.left, e.right, e.a, e.b, bend_material, s.materials[bend_material].bend_compliance_m_per_N});

@@ -34,6 +34,9 @@ struct BodyDescription {
   /// Visual constraint (Kenwright 2015): no control point moves further than this from where it started
   /// [m]. Finite and > 0.
   double max_deviation_m = 0.3;
+  /// Bends are made only across hinges folded at least this much from flat (angle between the two
+  /// triangles' normals) [rad]: a distance bend across a flatter hinge is ill-conditioned and useless.
+  double min_bend_fold_rad = 0.2;
   /// Per-point overrides of max_deviation_m, (control point, radius [m]); applied after the regions.
   std::vector<std::pair<uint32_t, double>> max_deviation_overrides;
 };
@@ -51,7 +54,7 @@ struct BodySettings {
 
   std::vector<EdgeConstraint> edges;    ///< hull edges
   std::vector<SpokeConstraint> spokes;  ///< one per control point
-  std::vector<BendConstraint> bends;    ///< one per hull edge shared by two triangles
+  std::vector<BendConstraint> bends;    ///< one per hull edge shared by two triangles and folded enough
   std::vector<double> edge_rest_m;      ///< original rest lengths L0, one per edge [m]
   std::vector<double> spoke_rest_m;     ///< original rest lengths L0, one per spoke [m]
   std::vector<double> bend_rest_m;      ///< original rest lengths L0, one per bend [m]

@@ -40,11 +40,11 @@ double linearSag(const BodySettings& s, double g) {
   return sum / static_cast<double>(n);
 }
 
-double simulatedSag(const std::shared_ptr<const BodySettings>& settings, uint32_t substeps, double dt_s,
-                    double g) {
+double simulatedSag(const std::shared_ptr<const BodySettings>& settings, uint32_t substeps,
+                    uint32_t iterations, double dt_s, double g) {
   SolverParams params;
   params.substeps = substeps;
-  params.iterations = 1;
+  params.iterations = iterations;
   params.damping_per_s = 30.0;
   params.sleep_delay_s = -1;
   DeformableBody body(settings, params);
