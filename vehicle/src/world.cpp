@@ -102,6 +102,7 @@ struct World::Impl {
   dJointGroupID contact_joints = nullptr;
   std::vector<std::unique_ptr<Car>> cars;
   std::vector<ObstacleEntry> obstacles;
+  std::vector<double> crush_allowance_m;  ///< per car (setCrushAllowance) [m]
   std::vector<ContactPoint> contacts;
   std::deque<dJointFeedback> feedback;  ///< one per contact; a deque so ODE's pointers stay valid
   std::vector<double> feedback_sign;    ///< -1 where ODE's body 1 is b (a is static): f1 acts on b
@@ -129,8 +130,18 @@ struct World::Impl {
     const int found =
         dCollide(g1, g2, static_cast<int>(self->scratch.size()), &self->scratch[0].geom, sizeof(dContact));
     const double mu = std::sqrt(self->frictionOf(g1) * self->frictionOf(g2));
+    const double allowance = self->pairAllowance(entityOf(g1), entityOf(g2));
     for (int i = 0; i < found; ++i) {
       dContact& c = self->scratch[static_cast<std::size_t>(i)];
+      if (c.geom.depth <= allowance) {  // within the crush stroke: the deformable body resists it
+        self->feedback.emplace_back();
+        self->feedback_sign.push_back(0.0);
+        self->contacts.push_back({entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal),
+                                  c.geom.depth, Eigen::Vector3d::Zero(), false});
+        continue;
+      }
+      const double depth = c.geom.depth;
+      c.geom.depth -= allowance;  // the rigid backstop: only the depth past the stroke is corrected
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
       c.surface.mu = mu;
       c.surface.soft_erp = self->settings.contact_erp;
@@ -140,9 +151,23 @@ struct World::Impl {
       self->feedback.emplace_back();
       self->feedback_sign.push_back(b1 == nullptr ? -1.0 : 1.0);
       dJointSetFeedback(joint, &self->feedback.back());
-      self->contacts.push_back(
-          {entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal), c.geom.depth});
+      self->contacts.push_back({entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal),
+                                depth, Eigen::Vector3d::Zero(), true});
     }
+  }
+
+  /// Crush allowance of a touching pair: the cars' allowances added; none against the ground or a ramp.
+  double pairAllowance(EntityRef a, EntityRef b) const {
+    double sum = 0;
+    for (const EntityRef& e : {a, b}) {
+      if (e.kind == EntityRef::Kind::Car) {
+        sum += crush_allowance_m[e.index];
+      } else {
+        const ObstacleKind kind = obstacles[e.index].kind;
+        if (kind == ObstacleKind::Ground || kind == ObstacleKind::Ramp) return 0;
+      }
+    }
+    return sum;
   }
 
   ObstacleId addObstacle(ObstacleEntry entry) {
@@ -208,6 +233,7 @@ struct World::Impl {
     const auto id = static_cast<CarId>(cars.size());
     cars.push_back(std::unique_ptr<Car>(new Car(world, space, ode::packEntity(kCarKind, id), hull,
                                                 car_settings, std::move(wheels), pose, velocity)));
+    crush_allowance_m.push_back(0.0);
     return id;
   }
 };
@@ -451,6 +477,23 @@ ObstacleShape World::obstacleShape(ObstacleId id) const {
 
 ObstacleShape World::shapeOf(EntityRef entity) const {
   return entity.kind == EntityRef::Kind::Car ? car(entity.index).shape() : obstacleShape(entity.index);
+}
+
+void World::setCrushAllowance(CarId id, double allowance_m) {
+  requireNonNegative(allowance_m, "crush_allowance_m");
+  impl_->crush_allowance_m.at(id) = allowance_m;
+}
+
+double World::crushAllowance(CarId id) const {
+  return impl_->crush_allowance_m.at(id);
+}
+
+void World::addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m) {
+  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
+                                                     : impl_->obstacles.at(entity.index).body;
+  if (body == nullptr) return;
+  dBodyEnable(body);
+  dBodyAddForceAtPos(body, force_N.x(), force_N.y(), force_N.z(), point_m.x(), point_m.y(), point_m.z());
 }
 
 void World::step() {

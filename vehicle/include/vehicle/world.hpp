@@ -61,6 +61,8 @@ struct ContactPoint {
   /// Force the contact applied to `a` during the step (on `b`: its opposite; static obstacles take
   /// none); times the step it is the contact impulse [N].
   Eigen::Vector3d force_on_a_N{0, 0, 0};
+  /// ODE made a rigid contact of it; false for a crush contact within the allowance (no force).
+  bool rigid = true;
 };
 
 /// A contact seen from one car, in its vehicle frame (what the deformation side takes each step).
@@ -137,6 +139,17 @@ class World {
   ObstacleShape obstacleShape(ObstacleId id) const;
   /// Obstacle or car shape in the world.
   ObstacleShape shapeOf(EntityRef entity) const;
+
+  /// Crush coupling (simulation.hpp): contacts of car `id`'s chassis with anything but the ground and
+  /// ramps become rigid only past `allowance_m` of penetration (their depth is reduced by it; between two
+  /// cars the allowances add). Shallower ones are still listed by contacts(), with rigid false and no
+  /// force. 0 (the default) keeps every contact rigid. Throws deform::InputError for a negative or
+  /// non-finite allowance.
+  void setCrushAllowance(CarId id, double allowance_m);
+  double crushAllowance(CarId id) const;
+  /// A force on a car's chassis or a free obstacle at a world point, for the next step only (static
+  /// obstacles and the ground ignore it) [N], [m]. Wakes a sleeping obstacle.
+  void addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m);
 
   /// One fixed step of 1 / physics_rate_hz: wheel forces of every car, collisions, ODE quick step.
   void step();

@@ -1,0 +1,170 @@
+#pragma once
+// A World whose cars may deform: every deformable car carries a deform::DeformableBody (its control
+// points in the vehicle frame) coupled to its ODE chassis (DESIGN.md section 5, the crush coupling).
+//
+// Per step: ODE (wheel forces, collisions, the chassis's crush force of the previous step), then for
+// every deformable car: the obstacles it touches, expressed in its vehicle frame, push its control points
+// back out to their surfaces (deform's contact projection: exact for primitives, libccd MPR against the
+// support function otherwise); the body spreads that into an elastic-plastic dent.
+//
+// Couplings (DeformationSettings::coupling):
+//  - Crush (default): ODE contacts of the chassis with what it hits are rigid only beyond a crush
+//    allowance (a backstop); within it the car moves on into the obstacle and is decelerated by the force
+//    the body's spokes carry into the core (the crumple's resistance), so the kinetic energy goes into
+//    plastic work. The collision hull is rebuilt from the dented body once the contact has ended (never
+//    from the instantaneous points during it: that would cancel the decelerating force, DESIGN.md sec. 5).
+//  - Visual (Kenwright 2015): ODE's rigid contacts stop the car as an undamaged one; the dent comes from
+//    the contact impulses, handed to the nearest control points. The motion is not changed by the damage.
+//
+// Contract names (the scene runner's): WorldSettings, CarId, CarStart, VehicleSettings are world.hpp's
+// and vehicle_settings.hpp's types of those names.
+#include <vehicle/world.hpp>
+
+#include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace vehicle {
+
+enum class Coupling : uint8_t {
+  Crush,   ///< the crumple absorbs the kinetic energy (default)
+  Visual,  ///< the paper: motion unaffected by damage, dent from the contact impulse
+};
+
+/// Per-car deformation settings (scene keys vehicle.deformation.*). The material defaults are the
+/// calibration of docs/CRASH_CALIBRATION.md (the built-in 1500 kg sedan against 56 km/h full-width
+/// rigid-barrier tests).
+struct DeformationSettings {
+  std::size_t control_points = 60;  ///< control points of the deformable body (4 .. 5000) [-]
+  double alpha = 3.5;               ///< skin: inverse-distance exponent for the render mesh [-]
+  std::size_t k_nearest = 8;        ///< skin: control points per render vertex (0 = dense) [-]
+  int substeps = 4;                 ///< deform substeps per physics step (>= 1) [-]
+  int iterations = 2;               ///< Gauss-Seidel sweeps per substep (>= 1) [-]
+  /// Visual constraint: no control point moves further than this from its rest position [m].
+  double max_deviation_m = 1.0;
+  /// Elastic strain past which a constraint's rest length flows (the bumper's elastic range) [-].
+  double yield_strain = 0.004;
+  /// Linear hardening: plastic over elastic modulus [-] (crush force rising with crush).
+  double hardening = 0.0;
+  /// Compliance of the spokes (control point to core): the load path into the chassis [m/N].
+  double compliance_m_per_N = 1e-7;
+  /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
+  double shell_compliance_ratio = 4.0;
+  /// Viscous damping of the control points' motion relative to the chassis [1/s].
+  double damping = 20.0;
+  /// Coulomb friction of control points sliding on what they hit [-].
+  double contact_friction = 0.3;
+  /// Crush: intrusion of the chassis hull into what it hits beyond which ODE's rigid contact takes over
+  /// (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below max_deviation_m.
+  double crush_allowance_m = 0.8;
+  /// Scale of the chassis's inertial (fictitious) forces on the control points [-]. 0 in Crush: the
+  /// chassis already carries the whole mass, feeding its deceleration to the shell would count it twice.
+  double inertial_scale = 0.0;
+  /// Visual: share of each contact impulse handed to the control points [-].
+  double visual_impulse_scale = 0.05;
+  Coupling coupling = Coupling::Crush;
+};
+
+/// Throws deform::InputError naming the member ("vehicle.deformation.<member>") for a value out of range.
+void checkDeformationSettings(const DeformationSettings& settings);
+
+/// Energy of a run since the car's first impact [J].
+struct EnergyTerms {
+  double kinetic_initial_J = 0;  ///< the chassis's kinetic energy (translation + rotation) at impact [J]
+  double plastic_work_J = 0;     ///< plastic work done in the body since impact (deform) [J]
+  /// Everything else the car lost: KE_initial - plastic - KE_final (the body's damping and stored
+  /// elastic energy, tyres, ODE's rigid contacts, drag). Reported as the remainder [J].
+  double dissipated_J = 0;
+  double kinetic_final_J = 0;  ///< the chassis's kinetic energy now [J]
+  /// Independent checks: the work the crush force took from the chassis [J] and the elastic plus
+  /// kinetic energy still held in the body relative to the chassis [J]. In Crush, plastic work cannot
+  /// exceed crush_work_J (energy is not created inside the body).
+  double crush_work_J = 0;
+  double body_energy_J = 0;
+};
+
+/// What a run did to one car (all since its first impact; zeros before it).
+struct CrashMetrics {
+  /// Closing speed along the first contact's normal at impact [m/s].
+  double impact_speed_mps = 0;
+  /// Largest separating speed along that normal afterwards [m/s]; restitution = rebound / impact [-].
+  double rebound_speed_mps = 0;
+  double restitution = 0;
+  /// Permanent crush as crash tests measure it: the intrusion of the struck end's profile at six equally
+  /// spaced stations across the width, at the height of the centre of mass, averaged [m] and the
+  /// largest [m] (of the control surface, from the rest shape to the shape now).
+  double residual_crush_m = 0;
+  double max_residual_crush_m = 0;
+  /// Largest displacement of the car into what it hit since first contact (the dynamic crush) [m].
+  double max_dynamic_crush_m = 0;
+  EnergyTerms energy;
+  double max_deviation_m = 0;  ///< largest |c_i - c_i0| ever [m]
+  double max_penetration_m =
+      0;                   ///< largest depth of a control point left inside an obstacle after a step [m]
+  bool tunnelled = false;  ///< the centre of mass crossed to the far side of something it hit
+  bool diverged = false;   ///< a non-finite value or one beyond 1e10 in the car or its body
+  bool impacted = false;   ///< the car has hit something (not the ground)
+};
+
+/// Stage timings of the last step [ms], for the runner's timing_ms.
+struct StepTimings {
+  double physics_ms = 0;  ///< ODE step (wheels, collisions, solver) [ms]
+  double deform_ms = 0;   ///< every car's deformation and coupling [ms]
+};
+
+class Simulation {
+ public:
+  /// Throws deform::InputError as World's constructor.
+  explicit Simulation(const WorldSettings& settings = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  World& world();
+  const World& world() const;
+
+  /// A car whose body deforms: control mesh (deformation.control_points, even LOD), masses and body
+  /// from `model`'s body mesh; the chassis as World::addCar. Throws deform::InputError for bad settings.
+  CarId addDeformableCar(const deform::VehicleModel& model, const VehicleSettings& car, const CarStart& start,
+                         const DeformationSettings& deformation = {});
+
+  /// One fixed physics step: ODE, then every car's deformation (and crush coupling).
+  void step();
+  /// Steps covering `duration_s` at the fixed rate; returns how many.
+  int run(double duration_s);
+
+  std::size_t deformableCount() const;
+  bool isDeformable(CarId car) const;
+  /// Control-point displacements c_i - c_i0 in the vehicle frame [m], one per control point (for the
+  /// skin). Throws std::out_of_range for a car that does not deform.
+  std::vector<Eigen::Vector3d> controlDisplacements(CarId car) const;
+  /// Rest control points (vehicle frame) — for building the render skin.
+  const std::vector<Eigen::Vector3d>& controlRestPoints(CarId car) const;
+  /// Current control points (vehicle frame) [m].
+  const std::vector<Eigen::Vector3d>& controlPoints(CarId car) const;
+  /// The control mesh the body was built from (rest shape, triangles).
+  const deform::ControlMesh& controlMesh(CarId car) const;
+  const DeformationSettings& deformationSettings(CarId car) const;
+
+  CrashMetrics metrics(CarId car) const;
+  StepTimings lastTimings() const;
+  uint64_t stateHash() const;  ///< world + every deformable body
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The permanent-crush measurement of CrashMetrics on its own: profile of `mesh`'s triangles with the
+/// points `points_m` along `direction` (horizontal, vehicle frame, pointing out of the struck end) at
+/// height z_m, at `stations` equally spaced positions across the width of the rest shape; returns the
+/// intrusion per station (rest profile minus profile now) [m].
+std::vector<double> crushProfile(const deform::ControlMesh& mesh,
+                                 const std::vector<Eigen::Vector3d>& points_m,
+                                 const Eigen::Vector3d& direction, double z_m, int stations = 6);
+
+}  // namespace vehicle

@@ -1,0 +1,38 @@
+#pragma once
+// What a deformable car hits, as deform's contact shapes in its vehicle frame (the crush coupling,
+// DESIGN.md section 5). Each shape is swept a little along the car's motion relative to it, away from
+// the car: a control point that a fast obstacle overran during the step (up to |v| dt deep) then still
+// leaves through the near face, never through the far side of a thin wall (no tunnelling of the dent).
+#include <vehicle/obstacle_shape.hpp>
+
+#include <deform/contact_shapes.hpp>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace vehicle {
+
+/// An obstacle shape (vehicle frame) plus a sweep: the support function of the Minkowski sum of the shape
+/// and the segment [0, sweep_m] (libccd / MPR input for shapes without an exact deform primitive).
+struct SweptShape {
+  ObstacleShape shape;               ///< vehicle frame
+  Eigen::Vector3d sweep_m{0, 0, 0};  ///< extension away from the car [m]
+  static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction);
+};
+
+/// Keeps the swept shapes alive while deform steps with the contact shapes that point into them.
+class CrushShapes {
+ public:
+  void clear();
+  /// Adds `shape` (vehicle frame, not a half-space) extended by `sweep_m`; boxes stay exact primitives
+  /// (extended along their axis closest to the sweep), the rest become support shapes.
+  void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m);
+  const std::vector<deform::ContactShape>& shapes() const { return shapes_; }
+
+ private:
+  std::vector<std::unique_ptr<SweptShape>> swept_;  ///< stable addresses for the support pointers
+  std::vector<deform::ContactShape> shapes_;
+};
+
+}  // namespace vehicle

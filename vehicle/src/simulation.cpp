@@ -1,0 +1,466 @@
+// A World with deformable cars and the crush coupling (simulation.hpp; DESIGN.md section 5).
+#include <vehicle/simulation.hpp>
+
+#include "crush_shapes.hpp"
+
+#include <deform/body_settings.hpp>
+#include <deform/body_state.hpp>
+#include <deform/deformable_body.hpp>
+#include <deform/error.hpp>
+#include <deform/masses.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vehicle {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms(Clock::duration d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+
+std::string field(const char* member) {
+  return std::string("vehicle.deformation.") + member;
+}
+
+void require(bool ok, const char* member, const std::string& rule, double value) {
+  if (!ok) throw deform::InputError(field(member) + ": " + rule + " (got " + std::to_string(value) + ")");
+}
+
+/// Kinetic energy of a rigid body: translation plus rotation (I in the body axes) [J].
+double kineticEnergy(const Car& car) {
+  const Eigen::Vector3d v = car.velocity_mps();
+  const Eigen::Vector3d w = car.bodyPose().orientation.conjugate() * car.angularVelocity_rad_s();
+  return 0.5 * car.mass_kg() * v.squaredNorm() + 0.5 * w.dot(car.inertia_kg_m2() * w);
+}
+
+bool crushable(const World& world, EntityRef e) {
+  if (e.kind == EntityRef::Kind::Car) return true;
+  const ObstacleKind kind = world.obstacleKind(e.index);
+  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
+}
+
+}  // namespace
+
+void checkDeformationSettings(const DeformationSettings& s) {
+  require(s.control_points >= 4 && s.control_points <= 5000, "control_points", "must be in [4, 5000]",
+          static_cast<double>(s.control_points));
+  require(std::isfinite(s.alpha) && s.alpha > 0, "alpha", "must be finite and positive", s.alpha);
+  require(s.substeps >= 1 && s.substeps <= 1000, "substeps", "must be in [1, 1000]", s.substeps);
+  require(s.iterations >= 1 && s.iterations <= 1000, "iterations", "must be in [1, 1000]", s.iterations);
+  require(std::isfinite(s.max_deviation_m) && s.max_deviation_m > 0, "max_deviation_m",
+          "must be finite and positive", s.max_deviation_m);
+  require(std::isfinite(s.yield_strain) && s.yield_strain >= 0, "yield_strain", "must be finite and >= 0",
+          s.yield_strain);
+  require(std::isfinite(s.hardening) && s.hardening >= 0, "hardening", "must be finite and >= 0",
+          s.hardening);
+  require(std::isfinite(s.compliance_m_per_N) && s.compliance_m_per_N > 0, "compliance_m_per_N",
+          "must be finite and positive", s.compliance_m_per_N);
+  require(std::isfinite(s.shell_compliance_ratio) && s.shell_compliance_ratio > 0, "shell_compliance_ratio",
+          "must be finite and positive", s.shell_compliance_ratio);
+  require(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0", s.damping);
+  require(std::isfinite(s.contact_friction) && s.contact_friction >= 0, "contact_friction",
+          "must be finite and >= 0", s.contact_friction);
+  require(std::isfinite(s.crush_allowance_m) && s.crush_allowance_m >= 0, "crush_allowance_m",
+          "must be finite and >= 0", s.crush_allowance_m);
+  require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
+          "must be finite and >= 0", s.inertial_scale);
+  require(std::isfinite(s.visual_impulse_scale) && s.visual_impulse_scale >= 0, "visual_impulse_scale",
+          "must be finite and >= 0", s.visual_impulse_scale);
+}
+
+/// One deformable car: its body and the bookkeeping of the coupling and the metrics.
+struct DeformableCar {
+  CarId id = 0;
+  DeformationSettings settings;
+  deform::ControlMesh mesh;
+  std::shared_ptr<const deform::BodySettings> body_settings;
+  std::unique_ptr<deform::DeformableBody> body;
+  CrushShapes shapes;
+  std::vector<EntityRef> touching;  ///< crushable entities in contact this step
+
+  // Coupling.
+  bool force_pending = false;
+  Eigen::Vector3d force_N{0, 0, 0};  ///< crush force for the next step (world) [N]
+  Eigen::Vector3d force_point_m{0, 0, 0};
+  std::vector<EntityRef> force_others;  ///< free bodies that take the reaction
+  bool hull_dirty = false;              ///< dented since the collision hull was last rebuilt
+  int quiet_steps = 0;                  ///< steps without a control point in contact
+  Eigen::Vector3d previous_velocity_mps{0, 0, 0};
+  double previous_kinetic_J = 0;
+
+  // Metrics.
+  CrashMetrics metrics;
+  Eigen::Vector3d impact_normal{0, 0, 1};  ///< world, out of what it hit
+  Eigen::Vector3d impact_direction_vehicle{1, 0, 0};
+  EntityRef impact_other;
+  double impact_separation_m = 0;  ///< normal . (com - other's interior point) at impact [m]
+  double plastic_at_impact_J = 0;
+  double plastic_before_step_J = 0;
+};
+
+struct Simulation::Impl {
+  World world;
+  std::vector<std::unique_ptr<DeformableCar>> cars;
+  std::vector<int> index_of;  ///< per CarId: index into cars, -1 when rigid
+  StepTimings timings;
+
+  explicit Impl(const WorldSettings& s) : world(s) {}
+
+  DeformableCar& of(CarId id) const {
+    if (id >= index_of.size() || index_of[id] < 0)
+      throw std::out_of_range("car " + std::to_string(id) + " does not deform");
+    return *cars[static_cast<std::size_t>(index_of[id])];
+  }
+
+  Eigen::Vector3d velocityOf(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car) return world.car(e.index).velocity_mps();
+    return Eigen::Vector3d::Zero();  // obstacles: static or slow next to a car
+  }
+
+  /// The shape of `e` in the world; a deformable car as its control points now.
+  ObstacleShape worldShapeOf(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car && e.index < index_of.size() && index_of[e.index] >= 0) {
+      const DeformableCar& other = of(e.index);
+      const Pose pose = world.car(e.index).vehiclePose();
+      ObstacleShape s;
+      s.type = ShapeType::Convex;
+      for (const auto& p : other.body->state().positions_m) {
+        s.vertices_m.push_back(pose.toWorld(p));
+        s.centre_m += s.vertices_m.back();
+      }
+      s.centre_m /= static_cast<double>(s.vertices_m.size());
+      return s;
+    }
+    return world.shapeOf(e);
+  }
+
+  void stepCar(DeformableCar& dc);
+  void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before, double kinetic_before);
+};
+
+Simulation::Simulation(const WorldSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+Simulation::~Simulation() = default;
+
+World& Simulation::world() {
+  return impl_->world;
+}
+const World& Simulation::world() const {
+  return impl_->world;
+}
+
+CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const VehicleSettings& car,
+                                   const CarStart& start, const DeformationSettings& deformation) {
+  checkDeformationSettings(deformation);
+  auto dc = std::make_unique<DeformableCar>();
+  dc->settings = deformation;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(model.body.positions_m.size());
+  for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
+  const std::string source = model.source.empty() ? "vehicle model" : model.source;
+  dc->mesh = deform::buildControlMesh(points, deformation.control_points, source.c_str());
+  const deform::MassSplit masses = deform::distributeMass(dc->mesh, car.mass_kg);
+  deform::BodyDescription description;
+  deform::Material& m = description.material;
+  m.spoke_compliance_m_per_N = deformation.compliance_m_per_N;
+  m.edge_compliance_m_per_N = deformation.compliance_m_per_N * deformation.shell_compliance_ratio;
+  m.bend_compliance_m_per_N = deformation.compliance_m_per_N * deformation.shell_compliance_ratio;
+  m.yield_strain = deformation.yield_strain;
+  m.hardening = deformation.hardening;
+  description.max_deviation_m = deformation.max_deviation_m;
+  dc->body_settings =
+      std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
+  deform::SolverParams params;
+  params.substeps = static_cast<uint32_t>(deformation.substeps);
+  params.iterations = static_cast<uint32_t>(deformation.iterations);
+  params.damping_per_s = deformation.damping;
+  params.inertial_scale = deformation.inertial_scale;
+  dc->body = std::make_unique<deform::DeformableBody>(dc->body_settings, params);
+
+  const CarId id = impl_->world.addCar(model, car, start);
+  dc->id = id;
+  if (deformation.coupling == Coupling::Crush)
+    impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
+  const Car& c = impl_->world.car(id);
+  dc->previous_velocity_mps = c.velocity_mps();
+  dc->previous_kinetic_J = kineticEnergy(c);
+  if (impl_->index_of.size() <= id) impl_->index_of.resize(id + 1, -1);
+  impl_->index_of[id] = static_cast<int>(impl_->cars.size());
+  impl_->cars.push_back(std::move(dc));
+  return id;
+}
+
+void Simulation::step() {
+  Impl& m = *impl_;
+  const auto t0 = Clock::now();
+  // The crush forces found last step act during this one (on the car, and their reaction on free bodies).
+  std::vector<Eigen::Vector3d> velocity_before;
+  std::vector<double> kinetic_before;
+  for (auto& dc : m.cars) {
+    const Car& car = m.world.car(dc->id);
+    velocity_before.push_back(car.velocity_mps());
+    kinetic_before.push_back(kineticEnergy(car));
+    if (!dc->force_pending) continue;
+    m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->force_N, dc->force_point_m);
+    for (const EntityRef& other : dc->force_others) {
+      const bool other_deforms = other.kind == EntityRef::Kind::Car && other.index < m.index_of.size() &&
+                                 m.index_of[other.index] >= 0;
+      if (!other_deforms) m.world.addForce(other, -dc->force_N, dc->force_point_m);
+    }
+  }
+  m.world.step();
+  const auto t1 = Clock::now();
+  for (std::size_t i = 0; i < m.cars.size(); ++i) {
+    DeformableCar& dc = *m.cars[i];
+    // Work of the crush force over the step: F . v at the midpoint of the step [J].
+    if (dc.force_pending) {
+      const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + m.world.car(dc.id).velocity_mps());
+      dc.metrics.energy.crush_work_J -= dc.force_N.dot(v_mid) * m.world.fixedDt_s();
+    }
+    m.stepCar(dc);
+    m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
+  }
+  m.timings = {ms(t1 - t0), ms(Clock::now() - t1)};
+}
+
+int Simulation::run(double duration_s) {
+  const int steps = static_cast<int>(std::llround(duration_s / impl_->world.fixedDt_s()));
+  for (int k = 0; k < steps; ++k) step();
+  return std::max(steps, 0);
+}
+
+void Simulation::Impl::stepCar(DeformableCar& dc) {
+  Car& car = world.car(dc.id);
+  const Pose frame = car.vehiclePose();
+  const Eigen::Quaterniond to_vehicle = frame.orientation.conjugate();
+  const double dt = world.fixedDt_s();
+  const std::vector<CarContact> contacts = world.carContacts(dc.id);
+
+  // What the car touches (not the ground, not ramps), each once.
+  dc.touching.clear();
+  for (const CarContact& c : contacts)
+    if (crushable(world, c.other) &&
+        std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
+      dc.touching.push_back(c.other);
+
+  deform::StepInputs inputs;
+  inputs.contact_friction = dc.settings.contact_friction;
+  dc.shapes.clear();
+  for (const EntityRef& other : dc.touching) {
+    const ObstacleShape local = transformShape(worldShapeOf(other), frame);
+    const Eigen::Vector3d relative = to_vehicle * (car.velocity_mps() - velocityOf(other));
+    const double speed = relative.norm();
+    const Eigen::Vector3d sweep = speed > 1e-9
+                                      ? Eigen::Vector3d(relative * ((2.0 * speed * dt + 0.05) / speed))
+                                      : Eigen::Vector3d::Zero();
+    dc.shapes.add(local, sweep);
+  }
+  inputs.contacts = dc.shapes.shapes();
+
+  // Visual: the contact impulses go to the nearest control points (inverse-distance weights).
+  const deform::BodyState& state = dc.body->state();
+  if (dc.settings.coupling == Coupling::Visual && dc.settings.visual_impulse_scale > 0) {
+    constexpr std::size_t kNearest = 4;
+    for (const CarContact& c : contacts) {
+      if (!crushable(world, c.other) || c.impulse_N_s.squaredNorm() == 0) continue;
+      std::vector<std::pair<double, uint32_t>> near;
+      for (uint32_t p = 0; p < state.positions_m.size(); ++p)
+        near.emplace_back((state.positions_m[p] - c.point_m).norm(), p);
+      const std::size_t k = std::min(kNearest, near.size());
+      std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+      double total = 0;
+      for (std::size_t j = 0; j < k; ++j) total += 1.0 / (near[j].first + 0.05);
+      for (std::size_t j = 0; j < k; ++j)
+        inputs.impulses.push_back(
+            {near[j].second,
+             dc.settings.visual_impulse_scale * (1.0 / (near[j].first + 0.05)) / total * c.impulse_N_s});
+    }
+  }
+
+  if (dc.settings.inertial_scale > 0) {
+    inputs.chassis.acceleration_mps2 = to_vehicle * ((car.velocity_mps() - dc.previous_velocity_mps) / dt);
+    inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
+    inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
+  }
+  dc.previous_velocity_mps = car.velocity_mps();
+
+  // The points about to be pushed: where the crush force acts (their centroid).
+  Eigen::Vector3d pushed_sum{0, 0, 0};
+  int pushed = 0;
+  deform::Penetration pen;
+  for (const auto& shape : inputs.contacts)
+    for (const Eigen::Vector3d& x : state.positions_m)
+      if (deform::penetration(shape, x, pen)) {
+        pushed_sum += x;
+        ++pushed;
+      }
+
+  dc.plastic_before_step_J = state.plastic_work_J;
+  const deform::StepReport report = dc.body->step(inputs, dt);
+
+  // Crush: the spokes' elastic forces on the core, (l - L) / alpha along each spoke, are the crumple's
+  // resistance carried into the chassis (quasi-static: they balance the contact forces on the shell).
+  dc.force_pending = false;
+  dc.force_others.clear();
+  if (dc.settings.coupling == Coupling::Crush && report.contact_points > 0) {
+    const deform::BodySettings& bs = *dc.body_settings;
+    const deform::BodyState& s = dc.body->state();
+    Eigen::Vector3d force{0, 0, 0};
+    for (std::size_t k = 0; k < bs.spokes.size(); ++k) {
+      const deform::SpokeConstraint& spoke = bs.spokes[k];
+      const Eigen::Vector3d d = s.positions_m[spoke.point] - bs.core_m;
+      const double length = d.norm();
+      if (length < deform::kMinConstraintLength_m) continue;
+      force += ((length - s.spoke_rest_m[k]) / spoke.compliance_m_per_N / length) * d;
+    }
+    const Eigen::Vector3d at = pushed > 0 ? Eigen::Vector3d(pushed_sum / pushed) : bs.core_m;
+    dc.force_N = frame.orientation * force;
+    dc.force_point_m = frame.toWorld(at);
+    dc.force_pending = force.allFinite();
+    dc.force_others = dc.touching;
+  }
+
+  // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5).
+  if (report.contact_points > 0) {
+    dc.hull_dirty = true;
+    dc.quiet_steps = 0;
+  } else {
+    ++dc.quiet_steps;
+  }
+  const int quiet_needed = std::max(1, static_cast<int>(std::ceil(0.1 / dt)));
+  if (dc.settings.coupling == Coupling::Crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed &&
+      report.max_speed_mps < 0.05) {
+    const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
+    car.setCollisionHull(deform::buildControlMesh(dc.body->state().positions_m, n, "dented body"));
+    const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
+    world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+    dc.hull_dirty = false;
+  }
+}
+
+void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before,
+                                     double kinetic_before) {
+  const Car& car = world.car(dc.id);
+  CrashMetrics& mt = dc.metrics;
+  const deform::BodyState& s = dc.body->state();
+
+  // Divergence (MuJoCo-style): non-finite or beyond 1e10 anywhere.
+  auto bad = [](const Eigen::Vector3d& v) { return !v.allFinite() || v.cwiseAbs().maxCoeff() > 1e10; };
+  for (const auto& x : s.positions_m)
+    if (bad(x)) mt.diverged = true;
+  if (bad(car.bodyPose().position_m) || bad(car.velocity_mps())) mt.diverged = true;
+
+  if (!mt.impacted && !dc.touching.empty()) {
+    // First impact: the normal of the contacts with the first thing touched, velocities before the step.
+    const EntityRef other = dc.touching.front();
+    Eigen::Vector3d normal{0, 0, 0};
+    for (const CarContact& c : world.carContacts(dc.id))
+      if (c.other == other) normal += car.vehiclePose().orientation * c.normal;
+    if (normal.norm() > 1e-12) {
+      mt.impacted = true;
+      dc.impact_normal = normal.normalized();
+      dc.impact_other = other;
+      const Eigen::Vector3d horizontal =
+          car.vehiclePose().orientation.conjugate() * Eigen::Vector3d(-dc.impact_normal);
+      dc.impact_direction_vehicle = Eigen::Vector3d(horizontal.x(), horizontal.y(), 0);
+      if (dc.impact_direction_vehicle.norm() < 1e-6) dc.impact_direction_vehicle = Eigen::Vector3d::UnitX();
+      mt.impact_speed_mps = std::max(0.0, -(velocity_before - velocityOf(other)).dot(dc.impact_normal));
+      mt.energy.kinetic_initial_J = kinetic_before;
+      dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
+      dc.impact_separation_m =
+          dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(other)));
+    }
+  }
+
+  mt.max_deviation_m = std::max(mt.max_deviation_m, deform::maxDeviation(*dc.body_settings, s));
+  deform::Penetration pen;
+  for (const auto& shape : dc.shapes.shapes())
+    for (const auto& x : s.positions_m)
+      if (deform::penetration(shape, x, pen))
+        mt.max_penetration_m = std::max(mt.max_penetration_m, pen.depth_m);
+
+  if (!mt.impacted) return;
+  const Eigen::Vector3d relative = car.velocity_mps() - velocityOf(dc.impact_other);
+  mt.rebound_speed_mps = std::max(mt.rebound_speed_mps, relative.dot(dc.impact_normal));
+  mt.restitution = mt.impact_speed_mps > 1e-9 ? mt.rebound_speed_mps / mt.impact_speed_mps : 0.0;
+  const double separation =
+      dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(dc.impact_other)));
+  mt.max_dynamic_crush_m = std::max(mt.max_dynamic_crush_m, dc.impact_separation_m - separation);
+  if (separation < 0) mt.tunnelled = true;
+
+  EnergyTerms& e = mt.energy;
+  e.plastic_work_J = s.plastic_work_J - dc.plastic_at_impact_J;
+  e.kinetic_final_J = kineticEnergy(car);
+  e.dissipated_J = e.kinetic_initial_J - e.plastic_work_J - e.kinetic_final_J;
+  e.body_energy_J = deform::bodyEnergy(*dc.body_settings, s).total_J();
+}
+
+std::size_t Simulation::deformableCount() const {
+  return impl_->cars.size();
+}
+
+bool Simulation::isDeformable(CarId car) const {
+  return car < impl_->index_of.size() && impl_->index_of[car] >= 0;
+}
+
+std::vector<Eigen::Vector3d> Simulation::controlDisplacements(CarId car) const {
+  const DeformableCar& dc = impl_->of(car);
+  std::vector<Eigen::Vector3d> out;
+  const auto& x = dc.body->state().positions_m;
+  out.reserve(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) out.push_back(x[i] - dc.body_settings->rest_positions_m[i]);
+  return out;
+}
+
+const std::vector<Eigen::Vector3d>& Simulation::controlRestPoints(CarId car) const {
+  return impl_->of(car).body_settings->rest_positions_m;
+}
+
+const std::vector<Eigen::Vector3d>& Simulation::controlPoints(CarId car) const {
+  return impl_->of(car).body->state().positions_m;
+}
+
+const deform::ControlMesh& Simulation::controlMesh(CarId car) const {
+  return impl_->of(car).mesh;
+}
+
+const DeformationSettings& Simulation::deformationSettings(CarId car) const {
+  return impl_->of(car).settings;
+}
+
+CrashMetrics Simulation::metrics(CarId car) const {
+  const DeformableCar& dc = impl_->of(car);
+  CrashMetrics out = dc.metrics;
+  if (!out.impacted) return out;
+  const std::vector<double> crush = crushProfile(dc.mesh, dc.body->state().positions_m,
+                                                 dc.impact_direction_vehicle, dc.body_settings->core_m.z());
+  if (!crush.empty()) {
+    double sum = 0;
+    for (double c : crush) {
+      sum += c;
+      out.max_residual_crush_m = std::max(out.max_residual_crush_m, c);
+    }
+    out.residual_crush_m = sum / static_cast<double>(crush.size());
+  }
+  return out;
+}
+
+StepTimings Simulation::lastTimings() const {
+  return impl_->timings;
+}
+
+uint64_t Simulation::stateHash() const {
+  uint64_t hash = impl_->world.stateHash();
+  for (const auto& dc : impl_->cars) {
+    const uint64_t body = deform::hashState(dc->body->state());
+    hash = fnv1a(&body, sizeof body, hash);
+  }
+  return hash;
+}
+
+}  // namespace vehicle
