@@ -1,0 +1,414 @@
+// Scene files: strict parsing with key paths, --set overrides, shipped scenes by name.
+#include <scenes/scene_file.hpp>
+
+#include <deform/error.hpp>
+#include <deform/mesh_import.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "json_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace scenes {
+namespace {
+
+using detail::JsonObject;
+using nlohmann::json;
+
+constexpr double kHuge = 1e6;  // bound for positions and sizes [m]
+
+const std::vector<std::string> kPresets = {"fast", "balanced", "accurate"};
+
+// "${DEFORM_TEST_MESHES}/x.obj" -> the variable's value; relative paths against the scene's folder.
+std::string resolveMeshPath(const std::string& spec, JsonObject& object, const std::string& key,
+                            const std::string& base_dir) {
+  if (spec.empty()) object.fail(key, "must not be empty (builtin:sedan, builtin:can, builtin:box or a file)");
+  if (deform::isBuiltinSpec(spec)) return spec;
+  std::string path = spec;
+  const std::string variable = "${DEFORM_TEST_MESHES}";
+  if (const auto at = path.find(variable); at != std::string::npos) {
+    const char* value = std::getenv("DEFORM_TEST_MESHES");
+    if (!value || !*value) {
+      object.fail(key, "'" + spec +
+                           "' needs DEFORM_TEST_MESHES set to the shared meshes folder (or give the file: "
+                           "--set " +
+                           object.keyPath(key) + "=/path/to/car.obj)");
+    }
+    path.replace(at, variable.size(), value);
+  }
+  fs::path p(path);
+  if (p.is_relative()) p = fs::path(base_dir) / p;
+  if (!fs::is_regular_file(p)) object.fail(key, "file not found: " + p.string());
+  return p.string();
+}
+
+std::optional<std::string> axisKey(JsonObject& object, const std::string& key) {
+  if (!object.has(key)) return std::nullopt;
+  const std::string text = object.string(key, std::nullopt);
+  try {
+    (void)deform::parseAxis(text, key);
+  } catch (const deform::InputError&) {
+    object.fail(key, "unknown axis '" + text + "' (+x, -x, +y, -y, +z or -z)");
+  }
+  return text;
+}
+
+Eigen::Vector3f colourKey(JsonObject& object, const Eigen::Vector3f& fallback) {
+  return object.vector3("colour", fallback.cast<double>(), 0.0, 1.0).cast<float>();
+}
+
+DeformationConfig parseDeformation(std::optional<JsonObject> object) {
+  if (!object) return *deformationPreset("balanced");
+  const std::string preset = object->choice("preset", std::string("balanced"), kPresets);
+  DeformationConfig d = *deformationPreset(preset);
+  d.control_points = static_cast<std::size_t>(
+      object->integer("control_points", static_cast<long long>(d.control_points), 4, 5000));
+  d.alpha = object->number("alpha", d.alpha, 0.5, 16);
+  d.k_nearest =
+      static_cast<std::size_t>(object->integer("k_nearest", static_cast<long long>(d.k_nearest), 0, 64));
+  d.substeps = static_cast<uint32_t>(object->integer("substeps", d.substeps, 1, 64));
+  d.iterations = static_cast<uint32_t>(object->integer("iterations", d.iterations, 1, 64));
+  d.max_deviation_m = object->number("max_deviation_m", d.max_deviation_m, 1e-4, 10);
+  d.yield_strain = object->number("yield_strain", d.yield_strain, 0, 1);
+  d.hardening = object->number("hardening", d.hardening, 0, 100);
+  d.edge_compliance_m_per_N = object->number("edge_compliance_m_per_N", d.edge_compliance_m_per_N, 0, 1);
+  d.spoke_compliance_m_per_N = object->number("spoke_compliance_m_per_N", d.spoke_compliance_m_per_N, 0, 1);
+  d.bend_compliance_m_per_N = object->number("bend_compliance_m_per_N", d.bend_compliance_m_per_N, 0, 1);
+  d.damping_per_s = object->number("damping_per_s", d.damping_per_s, 0, 1000);
+  object->finish();
+  return d;
+}
+
+DriveKey parseDriveKey(JsonObject& key) {
+  DriveKey k;
+  k.t_s = key.number("t_s", std::nullopt, 0, kHuge);
+  k.throttle = key.number("throttle", 0.0, 0, 1);
+  k.brake = key.number("brake", 0.0, 0, 1);
+  k.steering = key.number("steering", 0.0, -1, 1);
+  k.handbrake = key.boolean("handbrake", false);
+  if (key.has("target_speed_kmh")) k.target_speed_kmh = key.number("target_speed_kmh", std::nullopt, 0, 500);
+  key.finish();
+  return k;
+}
+
+DriveScript parseDrive(std::optional<JsonObject> object) {
+  DriveScript script;
+  if (!object) return script;
+  // Shorthand: a target speed for the whole run.
+  if (object->has("target_speed_kmh")) {
+    DriveKey k;
+    k.target_speed_kmh = object->number("target_speed_kmh", std::nullopt, 0, 500);
+    script.keys.push_back(k);
+  }
+  for (JsonObject& key : object->objects("keys")) {
+    script.keys.push_back(parseDriveKey(key));
+    if (script.keys.size() > 1 && script.keys.back().t_s < script.keys[script.keys.size() - 2].t_s) {
+      key.fail("t_s", "keys must be in time order (this one comes before the previous key)");
+    }
+  }
+  object->finish();
+  return script;
+}
+
+VehicleConfig parseVehicle(JsonObject& object, std::size_t index, const std::string& base_dir) {
+  VehicleConfig v;
+  v.name = object.string("name", "car" + std::to_string(index));
+  v.mesh_scale = object.number("mesh_scale", 1.0, 1e-6, 1e6);
+  v.mesh_up = axisKey(object, "mesh_up");
+  v.mesh_forward = axisKey(object, "mesh_forward");
+  v.mesh = resolveMeshPath(object.string("mesh", std::nullopt), object, "mesh", base_dir);
+  v.mass_kg = object.number("mass_kg", std::nullopt, 0.01, 100000);
+  v.coupling = object.choice("coupling", std::nullopt, {"crush", "visual"}) == "visual" ? Coupling::Visual
+                                                                                        : Coupling::Crush;
+  v.colour = colourKey(object, v.colour);
+  JsonObject start = *object.object("start", true);
+  v.start.position_m = start.vector3("position_m", Eigen::Vector3d::Zero(), -kHuge, kHuge, 0.0);
+  v.start.heading_deg = start.number("heading_deg", 0.0, -360, 360);
+  v.start.speed_kmh = start.number("speed_kmh", std::nullopt, -600, 600);
+  v.start.lateral_speed_kmh = start.number("lateral_speed_kmh", 0.0, -600, 600);
+  v.start.on_ground = start.boolean("on_ground", true);
+  start.finish();
+  v.deformation = parseDeformation(object.object("deformation"));
+  v.drive = parseDrive(object.object("drive"));
+  object.finish();
+  return v;
+}
+
+ObstacleConfig parseObstacle(JsonObject& object, std::size_t index, const std::string& base_dir) {
+  ObstacleConfig o;
+  const std::string type =
+      object.choice("type", std::nullopt, {"wall", "post", "vegetation", "ramp", "box", "mesh"});
+  o.name = object.string("name", type + std::to_string(index));
+  o.yaw_deg = object.number("yaw_deg", 0.0, -360, 360);
+  o.friction = object.number("friction", type == "vegetation" ? 0.8 : type == "ramp" ? 1.0 : 0.6, 0, 10);
+  if (type == "wall" || type == "box") {
+    o.type = type == "wall" ? ObstacleType::Wall : ObstacleType::Box;
+    o.size_m = object.vector3("size_m", std::nullopt, 1e-3, kHuge);
+    o.position_m = object.vector3("position_m", std::nullopt, -kHuge, kHuge, o.size_m.z() / 2);
+    if (o.type == ObstacleType::Box) o.mass_kg = object.number("mass_kg", 0.0, 0, 1e6);
+    o.colour = colourKey(
+        object, type == "wall" ? Eigen::Vector3f(0.58f, 0.57f, 0.55f) : Eigen::Vector3f(0.35f, 0.45f, 0.60f));
+  } else if (type == "post" || type == "vegetation") {
+    o.type = type == "post" ? ObstacleType::Post : ObstacleType::Vegetation;
+    o.position_m = object.vector3("position_m", std::nullopt, -kHuge, kHuge, 0.0);
+    o.radius_m = object.number("radius_m", std::nullopt, 1e-3, 100);
+    o.height_m = object.number("height_m", std::nullopt, 1e-3, 1000);
+    if (o.type == ObstacleType::Post) {
+      o.capsule = object.choice("shape", std::string("cylinder"), {"cylinder", "capsule"}) == "capsule";
+      o.colour = colourKey(object, {0.50f, 0.52f, 0.55f});
+    } else {
+      o.mass_kg = object.number("mass_kg", std::nullopt, 1e-3, 1e5);
+      o.colour = colourKey(object, {0.20f, 0.50f, 0.18f});
+    }
+  } else if (type == "ramp") {
+    o.type = ObstacleType::Ramp;
+    o.position_m = object.vector3("position_m", std::nullopt, -kHuge, kHuge, 0.0);
+    o.length_m = object.number("length_m", std::nullopt, 1e-3, 1000);
+    o.width_m = object.number("width_m", std::nullopt, 1e-3, 1000);
+    o.height_m = object.number("height_m", std::nullopt, 1e-3, 1000);
+    o.colour = colourKey(object, {0.60f, 0.55f, 0.45f});
+  } else {
+    o.type = ObstacleType::Mesh;
+    o.mesh_scale = object.number("mesh_scale", 1.0, 1e-6, 1e6);
+    o.mesh = resolveMeshPath(object.string("mesh", std::nullopt), object, "mesh", base_dir);
+    o.position_m = object.vector3("position_m", std::nullopt, -kHuge, kHuge, 0.0);
+    o.mass_kg = object.number("mass_kg", 0.0, 0, 1e6);
+    o.colour = colourKey(object, {0.70f, 0.70f, 0.68f});
+  }
+  object.finish();
+  return o;
+}
+
+CameraConfig parseCamera(std::optional<JsonObject> object, std::size_t vehicles) {
+  CameraConfig c;
+  if (!object) return c;
+  const std::string mode = object->choice("mode", std::string("chase"), {"chase", "side", "fixed"});
+  c.mode = mode == "side" ? CameraMode::Side : mode == "fixed" ? CameraMode::Fixed : CameraMode::Chase;
+  c.follow = static_cast<std::size_t>(object->integer("follow", 0, 0, static_cast<long long>(vehicles) - 1));
+  c.distance_m = object->number("distance_m", c.distance_m, 0.01, 1000);
+  c.height_m = object->number("height_m", c.height_m, -1000, 1000);
+  c.eye_m = object->vector3("eye_m", c.eye_m, -kHuge, kHuge);
+  c.target_m = object->vector3("target_m", c.target_m, -kHuge, kHuge);
+  c.fov_deg = object->number("fov_deg", c.fov_deg, 5, 150);
+  object->finish();
+  return c;
+}
+
+OutputConfig parseOutputs(std::optional<JsonObject> object) {
+  OutputConfig o;
+  if (!object) return o;
+  o.frames = object->boolean("frames", false);
+  o.video = object->boolean("video", false);
+  o.heatmap = object->boolean("heatmap", false);
+  o.width = static_cast<int>(object->integer("width", o.width, 16, 8192));
+  o.height = static_cast<int>(object->integer("height", o.height, 16, 8192));
+  o.fps = object->number("fps", o.fps, 1, 1000);
+  o.playback_speed = object->number("playback_speed", o.playback_speed, 1e-3, 1000);
+  o.heatmap_full_scale_m = object->number("heatmap_full_scale_m", 0.0, 0, 100);
+  o.samples = static_cast<int>(object->integer("samples", o.samples, 0, 16));
+  object->finish();
+  return o;
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw deform::InputError(path + ": cannot read the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Line and column of byte `offset` in `text` (1-based).
+std::string lineColumn(const std::string& text, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+}  // namespace
+
+std::optional<DeformationConfig> deformationPreset(const std::string& name) {
+  DeformationConfig d;
+  d.preset = name;
+  if (name == "fast") {
+    d.control_points = 32;
+    d.k_nearest = 4;
+    d.substeps = 2;
+    d.iterations = 1;
+  } else if (name == "balanced") {
+    d.control_points = 60;
+    d.k_nearest = 8;
+    d.substeps = 4;
+    d.iterations = 1;
+  } else if (name == "accurate") {
+    d.control_points = 200;
+    d.k_nearest = 16;
+    d.substeps = 8;
+    d.iterations = 2;
+  } else {
+    return std::nullopt;
+  }
+  return d;
+}
+
+Override parseOverride(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw deform::InputError("--set: expected key.path=value (got '" + text + "')");
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void applyOverride(json& document, const Override& override) {
+  // "obstacles[0].x" -> "obstacles.0.x"
+  std::string path = override.path;
+  std::replace(path.begin(), path.end(), '[', '.');
+  path.erase(std::remove(path.begin(), path.end(), ']'), path.end());
+  std::vector<std::string> parts;
+  std::istringstream stream(path);
+  for (std::string part; std::getline(stream, part, '.');) {
+    if (part.empty()) throw deform::InputError("--set " + override.path + ": empty key in the path");
+    parts.push_back(part);
+  }
+  if (parts.empty()) throw deform::InputError("--set: empty key path");
+  json value = json::parse(override.value, nullptr, false);
+  if (value.is_discarded()) value = override.value;  // a bare word: a string
+  json* node = &document;
+  std::string walked;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    const bool last = i + 1 == parts.size();
+    walked += (walked.empty() ? "" : ".") + part;
+    if (node->is_array()) {
+      const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+      const std::size_t index = digits && part.size() < 9 ? std::stoul(part) : node->size();
+      if (index >= node->size()) {
+        throw deform::InputError("--set " + override.path + ": " + walked + ": no such item (the array has " +
+                                 std::to_string(node->size()) + ")");
+      }
+      node = &(*node)[index];
+    } else if (node->is_object()) {
+      if (last) {
+        (*node)[part] = value;
+        return;
+      }
+      if (!node->contains(part)) (*node)[part] = json::object();
+      node = &(*node)[part];
+    } else {
+      throw deform::InputError("--set " + override.path + ": " + walked + ": the value above is " +
+                               detail::typeName(*node) + ", not an object");
+    }
+    if (last) *node = value;
+  }
+}
+
+std::string shippedScenesDir() {
+#ifdef DEFORM_SCENES_DIR
+  if (fs::is_directory(DEFORM_SCENES_DIR)) return DEFORM_SCENES_DIR;
+#endif
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec && fs::is_directory(exe.parent_path() / "scenes")) return (exe.parent_path() / "scenes").string();
+  return "scenes";
+}
+
+std::vector<std::string> shippedSceneNames() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(shippedScenesDir(), ec)) {
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string resolveScenePath(const std::string& name_or_path) {
+  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  const bool bare_name = name_or_path.find('/') == std::string::npos && !name_or_path.empty();
+  if (bare_name) {
+    fs::path shipped = fs::path(shippedScenesDir()) / name_or_path;
+    if (shipped.extension() != ".json") shipped += ".json";
+    if (fs::is_regular_file(shipped)) return shipped.string();
+  }
+  std::string names;
+  for (const std::string& n : shippedSceneNames()) names += (names.empty() ? "" : ", ") + n;
+  throw deform::InputError(name_or_path + ": no such scene file or shipped scene (shipped: " + names + ")");
+}
+
+SceneConfig parseScene(const json& document, const std::string& source, const std::string& base_dir) {
+  JsonObject top(document, "", source);
+  SceneConfig scene;
+  scene.source = source;
+  scene.name = top.string("name", fs::path(source).stem().string());
+  scene.description = top.string("description", "");
+  top.string("$schema", "");  // editors' schema hint, ignored
+  scene.duration_s = top.number("duration_s", std::nullopt, 1e-3, 1e5);
+  scene.physics_hz = top.number("physics_hz", std::nullopt, 50, 20000);
+  scene.gravity_mps2 = top.number("gravity_mps2", 9.81, 0, 100);
+  scene.ground = top.boolean("ground", true);
+  scene.ground_friction = top.number("ground_friction", 1.0, 0, 10);
+  if (top.has("vehicle") && top.has("vehicles")) {
+    top.fail("vehicles", "give either vehicle (one car) or vehicles (a list), not both");
+  }
+  if (top.has("vehicle")) {
+    JsonObject v = *top.object("vehicle", true);
+    scene.vehicles.push_back(parseVehicle(v, 0, base_dir));
+  } else {
+    std::vector<JsonObject> list = top.objects("vehicles");
+    if (list.empty()) top.fail("vehicle", "missing (required: vehicle, or vehicles with at least one car)");
+    for (std::size_t i = 0; i < list.size(); ++i)
+      scene.vehicles.push_back(parseVehicle(list[i], i, base_dir));
+  }
+  std::vector<JsonObject> obstacles = top.objects("obstacles");
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    scene.obstacles.push_back(parseObstacle(obstacles[i], i, base_dir));
+  }
+  scene.camera = parseCamera(top.object("camera"), scene.vehicles.size());
+  scene.outputs = parseOutputs(top.object("outputs"));
+  top.finish();
+  return scene;
+}
+
+SceneConfig loadScene(const std::string& name_or_path, const std::vector<Override>& overrides) {
+  const std::string path = resolveScenePath(name_or_path);
+  const std::string text = readText(path);
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw deform::InputError(path + ": not valid JSON at " + lineColumn(text, e.byte > 0 ? e.byte - 1 : 0));
+  }
+  for (const Override& o : overrides) applyOverride(document, o);
+  try {
+    return parseScene(document, path, fs::path(path).parent_path().string());
+  } catch (const deform::InputError& e) {
+    // Name the override when the refused key is one that --set gave.
+    const std::string message = e.what();
+    for (const Override& o : overrides) {
+      std::string dotted = o.path;
+      std::replace(dotted.begin(), dotted.end(), '[', '.');
+      dotted.erase(std::remove(dotted.begin(), dotted.end(), ']'), dotted.end());
+      std::string shown = message;
+      std::replace(shown.begin(), shown.end(), '[', '.');
+      shown.erase(std::remove(shown.begin(), shown.end(), ']'), shown.end());
+      if (shown.find(": " + dotted + ":") != std::string::npos) {
+        throw deform::InputError(message + " (from --set " + o.path + "=" + o.value + ")");
+      }
+    }
+    throw;
+  }
+}
+
+}  // namespace scenes

@@ -1,0 +1,177 @@
+// Scene files are read strictly: every refusal names the file and the key path; --set overrides are
+// checked as strictly as the file; every shipped scene parses.
+#include <catch2/catch.hpp>
+
+#include <scenes/scene_file.hpp>
+
+#include <deform/error.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json minimalScene() {
+  return json::parse(R"({
+    "duration_s": 1.0,
+    "physics_hz": 500,
+    "vehicle": {
+      "mesh": "builtin:sedan?vertices=2000",
+      "mass_kg": 1500,
+      "coupling": "crush",
+      "start": {"speed_kmh": 20}
+    },
+    "obstacles": [{"type": "wall", "position_m": [5, 0], "size_m": [0.5, 4, 1.5]}]
+  })");
+}
+
+// The message of the InputError parseScene throws for `document`.
+std::string refusal(const json& document) {
+  try {
+    (void)scenes::parseScene(document, "test.json");
+  } catch (const deform::InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST_CASE("a minimal scene takes the documented defaults", "[scenes]") {
+  const scenes::SceneConfig scene = scenes::parseScene(minimalScene(), "dir/minimal.json");
+  CHECK(scene.name == "minimal");
+  REQUIRE(scene.vehicles.size() == 1);
+  const scenes::VehicleConfig& car = scene.vehicles[0];
+  CHECK(car.start.speed_kmh == 20);
+  CHECK(car.deformation.preset == "balanced");
+  CHECK(car.deformation.control_points == 60);
+  CHECK(car.drive.keys.empty());
+  REQUIRE(scene.obstacles.size() == 1);
+  CHECK(scene.obstacles[0].position_m.z() == Approx(0.75));  // stands on the ground
+  CHECK(scene.camera.mode == scenes::CameraMode::Chase);
+  CHECK(scene.outputs.width == 1280);
+  CHECK(scene.outputs.height == 720);
+  CHECK_FALSE(scene.outputs.video);
+}
+
+TEST_CASE("unknown keys are refused naming file and key path", "[scenes]") {
+  json doc = minimalScene();
+  doc["vehicle"]["start"]["sped_kmh"] = 3;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.start.sped_kmh: unknown key"));
+  doc = minimalScene();
+  doc["obstacles"][0]["hieght"] = 1;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: obstacles[0].hieght: unknown key"));
+  doc = minimalScene();
+  doc["colour_grading"] = true;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: colour_grading: unknown key"));
+}
+
+TEST_CASE("wrong types are refused naming file and key path", "[scenes]") {
+  json doc = minimalScene();
+  doc["vehicle"]["mass_kg"] = "heavy";
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.mass_kg: must be a number (got a string)"));
+  doc = minimalScene();
+  doc["vehicle"]["deformation"] = {{"control_points", 60.5}};
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.control_points: must be an integer"));
+  doc = minimalScene();
+  doc["obstacles"][0]["size_m"] = {1, 2};
+  CHECK_THAT(refusal(doc), Catch::Contains("obstacles[0].size_m: must be an array [x, y, z]"));
+  doc = minimalScene();
+  doc["outputs"] = {{"video", "yes"}};
+  CHECK_THAT(refusal(doc), Catch::Contains("outputs.video: must be true or false"));
+  doc = minimalScene();
+  doc["vehicle"]["coupling"] = "glue";
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.coupling: unknown value 'glue'"));
+}
+
+TEST_CASE("values out of range are refused naming file and key path", "[scenes]") {
+  json doc = minimalScene();
+  doc["vehicle"]["mass_kg"] = -1;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.mass_kg: must be in"));
+  doc = minimalScene();
+  doc["physics_hz"] = 0;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: physics_hz: must be in [50, 20000] (got 0)"));
+  doc = minimalScene();
+  doc["vehicle"]["deformation"] = {{"alpha", 40}};
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.alpha: must be in [0.5, 16] (got 40)"));
+  doc = minimalScene();
+  doc["vehicle"]["drive"] = {{"keys", {{{"t_s", 1}, {"throttle", 2}}}}};
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.drive.keys[0].throttle: must be in [0, 1] (got 2)"));
+  doc = minimalScene();
+  doc["camera"] = {{"follow", 3}};
+  CHECK_THAT(refusal(doc), Catch::Contains("camera.follow: must be in [0, 0] (got 3)"));
+}
+
+TEST_CASE("missing keys and missing files are refused naming file and key path", "[scenes]") {
+  json doc = minimalScene();
+  doc.erase("duration_s");
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: duration_s: missing"));
+  doc = minimalScene();
+  doc["vehicle"]["start"].erase("speed_kmh");
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.start.speed_kmh: missing"));
+  doc = minimalScene();
+  doc["vehicle"]["mesh"] = "/no/such/car.glb";
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.mesh: file not found: /no/such/car.glb"));
+  CHECK_THROWS_WITH(scenes::loadScene("/no/such/scene.json"), Catch::Contains("/no/such/scene.json"));
+  CHECK_THROWS_WITH(scenes::loadScene("no_such_scene"), Catch::Contains("wall_crash"));
+}
+
+TEST_CASE("a scene that is not valid JSON is refused naming file, line and column", "[scenes]") {
+  const fs::path path = fs::temp_directory_path() / "scenes_test_broken.json";
+  std::ofstream(path) << "{\n  \"duration_s\": 1,\n  \"physics_hz\" 500\n}\n";
+  CHECK_THROWS_WITH(scenes::loadScene(path.string()),
+                    Catch::Contains("scenes_test_broken.json: not valid JSON at line 3"));
+  fs::remove(path);
+}
+
+TEST_CASE("--set overrides any key and is checked as strictly as the file", "[scenes]") {
+  json doc = minimalScene();
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed_kmh=5"));
+  scenes::applyOverride(doc, scenes::parseOverride("obstacles[0].size_m=[1,5,2]"));
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.preset=fast"));
+  const scenes::SceneConfig scene = scenes::parseScene(doc, "test.json");
+  CHECK(scene.vehicles[0].start.speed_kmh == 5);
+  CHECK(scene.obstacles[0].size_m.y() == 5);
+  CHECK(scene.vehicles[0].deformation.control_points == 32);
+
+  doc = minimalScene();
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed=5"));
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.start.speed: unknown key"));
+  doc = minimalScene();
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.mass_kg=light"));
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.mass_kg: must be a number (got a string)"));
+  CHECK_THROWS_WITH(scenes::parseOverride("vehicle.mass_kg"), Catch::Contains("--set"));
+  CHECK_THROWS_WITH(scenes::applyOverride(doc, scenes::parseOverride("obstacles.7.x=1")),
+                    Catch::Contains("--set obstacles.7.x"));
+  CHECK_THROWS_WITH(scenes::applyOverride(doc, scenes::parseOverride("duration_s.x=1")),
+                    Catch::Contains("--set duration_s.x"));
+  CHECK_THROWS_WITH(
+      scenes::loadScene("wall_crash", {scenes::parseOverride("vehicle.start.sped=1")}),
+      Catch::Contains("wall_crash.json: vehicle.start.sped: unknown key") && Catch::Contains("--set"));
+}
+
+TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
+  const std::vector<std::string> names = scenes::shippedSceneNames();
+  for (const char* expected : {"wall_crash", "post_bumps", "wall_slide", "rollover", "pole_side",
+                               "car_to_car", "can_crush", "real_mesh"}) {
+    CHECK(std::find(names.begin(), names.end(), expected) != names.end());
+  }
+  for (const std::string& name : names) {
+    if (name == "real_mesh" && !std::getenv("DEFORM_TEST_MESHES")) {
+      CHECK_THROWS_WITH(scenes::loadScene(name), Catch::Contains("DEFORM_TEST_MESHES"));
+      continue;
+    }
+    INFO(name);
+    const scenes::SceneConfig scene = scenes::loadScene(name);
+    CHECK(scene.name == name);
+    CHECK_FALSE(scene.description.empty());
+    CHECK_FALSE(scene.vehicles.empty());
+  }
+  const scenes::SceneConfig wall = scenes::loadScene("wall_crash");
+  CHECK(wall.vehicles[0].start.speed_kmh == 56);
+  CHECK(scenes::loadScene("car_to_car").vehicles.size() == 2);
+}
