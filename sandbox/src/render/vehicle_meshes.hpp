@@ -11,9 +11,10 @@ namespace sandbox::render {
 /// Paint and tyre colours (sRGB).
 inline const Eigen::Vector3f kBodyColour{0.62f, 0.08f, 0.06f};
 inline const Eigen::Vector3f kTyreColour{0.07f, 0.07f, 0.075f};
+inline const Eigen::Vector3f kHubColour{0.50f, 0.51f, 0.53f};
 
-/// The body first (index 0, coloured `body_colour`), then one mesh per wheel placed at its hub (matte
-/// dark tyres). All in the vehicle frame; set MeshData::model to move the car.
+/// The body first (index 0, coloured `body_colour`), then per wheel its tyre placed at the hub (matte,
+/// dark) and two hub caps (light grey). All in the vehicle frame; set MeshData::model to move the car.
 std::vector<MeshData> vehicleMeshes(const deform::VehicleModel& model,
                                     const Eigen::Vector3f& body_colour = kBodyColour);
 
