@@ -62,25 +62,31 @@ Eigen::Vector3f colourKey(JsonObject& object, const Eigen::Vector3f& fallback) {
   return object.vector3("colour", fallback.cast<double>(), 0.0, 1.0).cast<float>();
 }
 
-DeformationConfig parseDeformation(std::optional<JsonObject> object) {
-  if (!object) return *deformationPreset("balanced");
-  const std::string preset = object->choice("preset", std::string("balanced"), kPresets);
-  DeformationConfig d = *deformationPreset(preset);
-  d.control_points = static_cast<std::size_t>(
-      object->integer("control_points", static_cast<long long>(d.control_points), 4, 5000));
-  d.alpha = object->number("alpha", d.alpha, 0.5, 16);
-  d.k_nearest =
-      static_cast<std::size_t>(object->integer("k_nearest", static_cast<long long>(d.k_nearest), 0, 64));
-  d.substeps = static_cast<uint32_t>(object->integer("substeps", d.substeps, 1, 64));
-  d.iterations = static_cast<uint32_t>(object->integer("iterations", d.iterations, 1, 64));
-  d.max_deviation_m = object->number("max_deviation_m", d.max_deviation_m, 1e-4, 10);
-  d.yield_strain = object->number("yield_strain", d.yield_strain, 0, 1);
-  d.hardening = object->number("hardening", d.hardening, 0, 100);
-  d.edge_compliance_m_per_N = object->number("edge_compliance_m_per_N", d.edge_compliance_m_per_N, 0, 1);
-  d.spoke_compliance_m_per_N = object->number("spoke_compliance_m_per_N", d.spoke_compliance_m_per_N, 0, 1);
-  d.bend_compliance_m_per_N = object->number("bend_compliance_m_per_N", d.bend_compliance_m_per_N, 0, 1);
-  d.damping_per_s = object->number("damping_per_s", d.damping_per_s, 0, 1000);
-  object->finish();
+DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling) {
+  DeformationConfig d = *deformationPreset("balanced");
+  if (object) {
+    d = *deformationPreset(object->choice("preset", std::string("balanced"), kPresets));
+    vehicle::DeformationSettings& s = d.settings;
+    s.control_points = static_cast<std::size_t>(
+        object->integer("control_points", static_cast<long long>(s.control_points), 4, 5000));
+    s.alpha = object->number("alpha", s.alpha, 0.5, 16);
+    s.k_nearest =
+        static_cast<std::size_t>(object->integer("k_nearest", static_cast<long long>(s.k_nearest), 0, 64));
+    s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
+    s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
+    s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);
+    s.yield_strain = object->number("yield_strain", s.yield_strain, 0, 1);
+    s.hardening = object->number("hardening", s.hardening, 0, 100);
+    s.compliance_m_per_N = object->number("compliance_m_per_N", s.compliance_m_per_N, 1e-12, 1);
+    s.shell_compliance_ratio = object->number("shell_compliance_ratio", s.shell_compliance_ratio, 1e-3, 1e3);
+    s.damping = object->number("damping", s.damping, 0, 1000);
+    s.contact_friction = object->number("contact_friction", s.contact_friction, 0, 10);
+    s.crush_allowance_m = object->number("crush_allowance_m", s.crush_allowance_m, 0, 10);
+    s.inertial_scale = object->number("inertial_scale", s.inertial_scale, 0, 10);
+    s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
+    object->finish();
+  }
+  d.settings.coupling = coupling;
   return d;
 }
 
@@ -123,8 +129,8 @@ VehicleConfig parseVehicle(JsonObject& object, std::size_t index, const std::str
   v.mesh_forward = axisKey(object, "mesh_forward");
   v.mesh = resolveMeshPath(object.string("mesh", std::nullopt), object, "mesh", base_dir);
   v.mass_kg = object.number("mass_kg", std::nullopt, 0.01, 100000);
-  v.coupling = object.choice("coupling", std::nullopt, {"crush", "visual"}) == "visual" ? Coupling::Visual
-                                                                                        : Coupling::Crush;
+  const bool visual = object.choice("coupling", std::nullopt, {"crush", "visual"}) == "visual";
+  const vehicle::Coupling coupling = visual ? vehicle::Coupling::Visual : vehicle::Coupling::Crush;
   v.colour = colourKey(object, v.colour);
   JsonObject start = *object.object("start", true);
   v.start.position_m = start.vector3("position_m", Eigen::Vector3d::Zero(), -kHuge, kHuge, 0.0);
@@ -133,7 +139,7 @@ VehicleConfig parseVehicle(JsonObject& object, std::size_t index, const std::str
   v.start.lateral_speed_kmh = start.number("lateral_speed_kmh", 0.0, -600, 600);
   v.start.on_ground = start.boolean("on_ground", true);
   start.finish();
-  v.deformation = parseDeformation(object.object("deformation"));
+  v.deformation = parseDeformation(object.object("deformation"), coupling);
   v.drive = parseDrive(object.object("drive"));
   object.finish();
   return v;
@@ -242,22 +248,18 @@ std::string lineColumn(const std::string& text, std::size_t offset) {
 std::optional<DeformationConfig> deformationPreset(const std::string& name) {
   DeformationConfig d;
   d.preset = name;
+  vehicle::DeformationSettings& s = d.settings;  // vehicle's calibrated defaults are "balanced"
   if (name == "fast") {
-    d.control_points = 32;
-    d.k_nearest = 4;
-    d.substeps = 2;
-    d.iterations = 1;
-  } else if (name == "balanced") {
-    d.control_points = 60;
-    d.k_nearest = 8;
-    d.substeps = 4;
-    d.iterations = 1;
+    s.control_points = 32;
+    s.k_nearest = 4;
+    s.substeps = 2;
+    s.iterations = 1;
   } else if (name == "accurate") {
-    d.control_points = 200;
-    d.k_nearest = 16;
-    d.substeps = 8;
-    d.iterations = 2;
-  } else {
+    s.control_points = 200;
+    s.k_nearest = 16;
+    s.substeps = 8;
+    s.iterations = 4;
+  } else if (name != "balanced") {
     return std::nullopt;
   }
   return d;

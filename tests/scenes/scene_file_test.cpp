@@ -48,7 +48,7 @@ TEST_CASE("a minimal scene takes the documented defaults", "[scenes]") {
   const scenes::VehicleConfig& car = scene.vehicles[0];
   CHECK(car.start.speed_kmh == 20);
   CHECK(car.deformation.preset == "balanced");
-  CHECK(car.deformation.control_points == 60);
+  CHECK(car.deformation.settings.control_points == 60);
   CHECK(car.drive.keys.empty());
   REQUIRE(scene.obstacles.size() == 1);
   CHECK(scene.obstacles[0].position_m.z() == Approx(0.75));  // stands on the ground
@@ -136,7 +136,7 @@ TEST_CASE("--set overrides any key and is checked as strictly as the file", "[sc
   const scenes::SceneConfig scene = scenes::parseScene(doc, "test.json");
   CHECK(scene.vehicles[0].start.speed_kmh == 5);
   CHECK(scene.obstacles[0].size_m.y() == 5);
-  CHECK(scene.vehicles[0].deformation.control_points == 32);
+  CHECK(scene.vehicles[0].deformation.settings.control_points == 32);
 
   doc = minimalScene();
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed=5"));

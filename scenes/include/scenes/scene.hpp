@@ -2,6 +2,8 @@
 // A scene as read from its JSON file (scenes/README.md lists every key, its unit and default): the
 // cars with their meshes, starts, drive scripts and deformation knobs, the obstacles, the camera and
 // what to write. Plain data, checked when it is read (scene_file.hpp); the runner plays it.
+#include <vehicle/simulation.hpp>
+
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -10,30 +12,15 @@
 
 namespace scenes {
 
-/// How a car's damage acts back on its motion (DESIGN.md section 5).
-enum class Coupling : uint8_t {
-  Crush,   ///< the crumple absorbs the kinetic energy (the default)
-  Visual,  ///< the paper: motion unaffected by the damage, a rigid contact
-};
-
 /// The deformation knobs of one car (DESIGN.md section 6): a named preset, then any key overrides it.
+/// The knobs are vehicle::DeformationSettings' members under the same names (coupling included).
 struct DeformationConfig {
-  std::string preset = "balanced";         ///< fast, balanced or accurate (the values below are its defaults)
-  std::size_t control_points = 60;         ///< N, the control mesh's level of detail [-]
-  double alpha = 3.5;                      ///< inverse-distance power of the skin weights [-]
-  std::size_t k_nearest = 8;               ///< influences per render-mesh vertex; 0 = dense [-]
-  uint32_t substeps = 4;                   ///< XPBD substeps per physics step [-]
-  uint32_t iterations = 1;                 ///< constraint sweeps per substep [-]
-  double max_deviation_m = 0.6;            ///< visual constraint: furthest a control point may move [m]
-  double yield_strain = 0.02;              ///< elastic strain beyond which rest lengths flow (plastic) [-]
-  double hardening = 0.0;                  ///< plastic hardening ratio [-]
-  double edge_compliance_m_per_N = 1e-6;   ///< hull edges [m/N]
-  double spoke_compliance_m_per_N = 1e-5;  ///< spokes to the core [m/N]
-  double bend_compliance_m_per_N = 1e-5;   ///< bending across hull edges [m/N]
-  double damping_per_s = 2.0;              ///< drag on control-point motion relative to the chassis [1/s]
+  std::string preset = "balanced";        ///< fast, balanced or accurate
+  vehicle::DeformationSettings settings;  ///< the preset's values with the scene's keys applied
 };
 
-/// Values of a named preset ("fast", "balanced", "accurate"); nothing for another name.
+/// Values of a named preset ("fast", "balanced" = vehicle's calibrated defaults, "accurate"): control
+/// points, skin influences, substeps and iterations; nothing for another name.
 std::optional<DeformationConfig> deformationPreset(const std::string& name);
 
 /// One key of a drive script: the inputs at time t_s. Between keys, throttle, brake and steering are
@@ -73,8 +60,7 @@ struct VehicleConfig {
   std::optional<std::string> mesh_forward;  ///< file's forward axis; default per format
   double mass_kg = 1500;                    ///< whole vehicle [kg]
   StartConfig start;
-  Coupling coupling = Coupling::Crush;
-  DeformationConfig deformation;
+  DeformationConfig deformation;  ///< knobs and coupling (crush or visual)
   DriveScript drive;
   Eigen::Vector3f colour{0.62f, 0.08f, 0.06f};  ///< paint, sRGB [0, 1]
 };

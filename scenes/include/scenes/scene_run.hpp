@@ -1,0 +1,104 @@
+#pragma once
+// Playing a scene, without any rendering: the simulation (World plus deformable cars) built from the
+// scene, stepped at the fixed physics rate with each car's drive script, and what a run reports: the
+// crash metrics of every car, the state hash, stage timings and one timeline row per frame.
+#include <scenes/drive_script.hpp>
+#include <scenes/scene.hpp>
+
+#include <vehicle/simulation.hpp>
+
+#include <deform/builtin_meshes.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace scenes {
+
+/// Accumulated time per stage of a run [ms]. physics and deform come from the simulation; embed (the
+/// render mesh following the control points) and render (drawing, PNG, video) from whoever draws.
+struct StageTimes {
+  double physics_ms = 0;
+  double deform_ms = 0;
+  double embed_ms = 0;
+  double render_ms = 0;
+  double total_ms = 0;
+};
+
+class SceneRun {
+ public:
+  /// Loads the meshes and builds the world. Throws deform::InputError naming the scene file and key
+  /// for a mesh that cannot be read or settings the vehicle side refuses.
+  explicit SceneRun(SceneConfig scene);
+  ~SceneRun();
+  SceneRun(const SceneRun&) = delete;
+  SceneRun& operator=(const SceneRun&) = delete;
+
+  const SceneConfig& scene() const { return scene_; }
+  vehicle::Simulation& simulation() { return *simulation_; }
+  const vehicle::Simulation& simulation() const { return *simulation_; }
+
+  std::size_t carCount() const { return cars_.size(); }
+  vehicle::CarId carId(std::size_t car) const { return cars_[car].id; }
+  /// The car's model as loaded (render mesh and wheels, vehicle frame).
+  const deform::VehicleModel& model(std::size_t car) const { return cars_[car].model; }
+  /// Obstacle id in the world of the scene's obstacle `index`.
+  vehicle::ObstacleId obstacleId(std::size_t index) const { return obstacle_ids_[index]; }
+
+  double time_s() const;
+  uint64_t steps() const;
+  /// Fixed steps the whole scene takes: round(duration_s * physics_hz).
+  uint64_t totalSteps() const { return total_steps_; }
+  bool finished() const { return steps() >= total_steps_; }
+
+  /// One physics step with every car's drive inputs (does nothing once finished).
+  void step();
+  /// Steps until the simulated time reaches t_s (within half a step) or the scene ends.
+  void stepUntil(double t_s);
+  /// Steps to the end of the scene.
+  void runToEnd();
+
+  /// Physics and deform times so far; embed and render are the caller's to add.
+  StageTimes& times() { return times_; }
+  const StageTimes& times() const { return times_; }
+
+  /// A non-finite or huge value in any car or body so far.
+  bool diverged() const;
+
+  /// The run's figures: car 0's metrics at the top level (impact_speed_mps, ..., energy, tunnelled,
+  /// diverged of any car), every car's under "cars", state_hash (16 hex digits), steps, timing_ms.
+  nlohmann::json summary() const;
+
+  /// Timeline columns (time, step, per car: position, speed, inputs, deviation, crush, plastic work).
+  std::vector<std::string> timelineColumns() const;
+  /// Their values now.
+  std::vector<double> timelineValues() const;
+
+ private:
+  struct Car {
+    vehicle::CarId id = 0;
+    deform::VehicleModel model;
+    DrivePlayer driver;
+    double lateral_speed_mps = 0;  ///< pushed in on the first step
+  };
+  SceneConfig scene_;
+  std::unique_ptr<vehicle::Simulation> simulation_;
+  std::vector<Car> cars_;
+  std::vector<vehicle::ObstacleId> obstacle_ids_;
+  uint64_t total_steps_ = 0;
+  StageTimes times_;
+};
+
+/// "0123456789abcdef": a state hash as 16 hex digits.
+std::string hashHex(uint64_t hash);
+
+/// Writes `text` to `path` atomically (path.tmp, then rename). Throws std::runtime_error naming the path.
+void writeFileAtomically(const std::string& path, const std::string& text);
+
+/// The timeline as CSV: a header of `columns`, one line per row.
+std::string timelineCsv(const std::vector<std::string>& columns,
+                        const std::vector<std::vector<double>>& rows);
+
+}  // namespace scenes

@@ -1,0 +1,281 @@
+// Playing a scene: world and cars from the scene, drive scripts, metrics, timeline.
+#include <scenes/scene_run.hpp>
+
+#include <deform/error.hpp>
+#include <deform/mesh_import.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace scenes {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// The scene file's name for vehicle `index` (its key path), for messages.
+std::string vehicleKey(const SceneConfig& scene, std::size_t index) {
+  return scene.vehicles.size() == 1 && index == 0 ? std::string("vehicle")
+                                                  : "vehicles[" + std::to_string(index) + "]";
+}
+
+// Re-throws an InputError from the vehicle or mesh side with the scene file and key path in front.
+template <typename F>
+auto withSource(const std::string& where, F&& f) {
+  try {
+    return f();
+  } catch (const deform::InputError& e) {
+    throw deform::InputError(where + ": " + e.what());
+  }
+}
+
+deform::ImportOptions importOptions(double scale, const std::optional<std::string>& up,
+                                    const std::optional<std::string>& forward) {
+  deform::ImportOptions options;
+  options.scale = scale;
+  if (up) options.up = deform::parseAxis(*up, "mesh_up");
+  if (forward) options.forward = deform::parseAxis(*forward, "mesh_forward");
+  return options;
+}
+
+vehicle::ObstacleId addObstacle(vehicle::World& world, const ObstacleConfig& o, const std::string& where) {
+  const vehicle::Pose pose = vehicle::Pose::yawed(o.position_m, o.yaw_deg * kDegree);
+  switch (o.type) {
+    case ObstacleType::Wall:
+      return world.addWall(pose, o.size_m, o.friction);
+    case ObstacleType::Box:
+      if (o.mass_kg <= 0) return world.addWall(pose, o.size_m, o.friction);
+      return world.addConvexMesh(deform::makeBox(o.size_m, 100), pose, o.mass_kg, o.friction);
+    case ObstacleType::Post:
+      return world.addPost(o.position_m, o.radius_m, o.height_m,
+                           o.capsule ? vehicle::PostShape::Capsule : vehicle::PostShape::Cylinder,
+                           o.friction);
+    case ObstacleType::Vegetation:
+      return world.addVegetation(o.position_m, o.radius_m, o.height_m, o.mass_kg, o.friction);
+    case ObstacleType::Ramp:
+      return world.addRamp(pose, o.length_m, o.width_m, o.height_m, o.friction);
+    case ObstacleType::Mesh: {
+      const deform::VehicleModel mesh = withSource(where + ".mesh", [&] {
+        return deform::loadVehicleModel(o.mesh, importOptions(o.mesh_scale, {}, {}));
+      });
+      return world.addConvexMesh(mesh.body, pose, o.mass_kg, o.friction);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string hashHex(uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+void writeFileAtomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error(path + ": cannot write");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) throw std::runtime_error(path + ": cannot write (" + ec.message() + ")");
+}
+
+std::string timelineCsv(const std::vector<std::string>& columns,
+                        const std::vector<std::vector<double>>& rows) {
+  std::ostringstream out;
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+  char number[32];
+  for (const std::vector<double>& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      std::snprintf(number, sizeof number, "%.9g", row[i]);
+      out << (i ? "," : "") << number;
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
+  vehicle::WorldSettings world_settings;
+  world_settings.physics_rate_hz = scene_.physics_hz;
+  world_settings.gravity_mps2 = {0, 0, -scene_.gravity_mps2};
+  world_settings.ground = scene_.ground;
+  world_settings.ground_friction = scene_.ground_friction;
+  simulation_ =
+      withSource(scene_.source, [&] { return std::make_unique<vehicle::Simulation>(world_settings); });
+  total_steps_ = static_cast<uint64_t>(std::llround(scene_.duration_s * scene_.physics_hz));
+
+  for (std::size_t i = 0; i < scene_.vehicles.size(); ++i) {
+    const VehicleConfig& v = scene_.vehicles[i];
+    const std::string where = scene_.source + ": " + vehicleKey(scene_, i);
+    deform::VehicleModel model = withSource(where + ".mesh", [&] {
+      return deform::loadVehicleModel(v.mesh, importOptions(v.mesh_scale, v.mesh_up, v.mesh_forward));
+    });
+    vehicle::VehicleSettings base;
+    base.wheels = vehicle::wheelsFromModel(base, model);
+    const vehicle::VehicleSettings settings =
+        withSource(where + ".mass_kg", [&] { return vehicle::settingsForMass(base, v.mass_kg); });
+    vehicle::CarStart start;
+    start.position_m = v.start.position_m;
+    start.heading_rad = v.start.heading_deg * kDegree;
+    start.speed_mps = v.start.speed_kmh / 3.6;
+    start.on_ground = v.start.on_ground;
+    const vehicle::CarId id = withSource(where + ".deformation", [&] {
+      return simulation_->addDeformableCar(model, settings, start, v.deformation.settings);
+    });
+    cars_.push_back(Car{id, std::move(model), DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6});
+  }
+  for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
+    const std::string where = scene_.source + ": obstacles[" + std::to_string(i) + "]";
+    obstacle_ids_.push_back(
+        withSource(where, [&] { return addObstacle(simulation_->world(), scene_.obstacles[i], where); }));
+  }
+}
+
+SceneRun::~SceneRun() = default;
+
+double SceneRun::time_s() const {
+  return simulation_->world().time_s();
+}
+
+uint64_t SceneRun::steps() const {
+  return simulation_->world().stepCount();
+}
+
+void SceneRun::step() {
+  if (finished()) return;
+  vehicle::World& world = simulation_->world();
+  const double dt = world.fixedDt_s();
+  for (Car& car : cars_) {
+    vehicle::Car& chassis = world.car(car.id);
+    chassis.setInput(car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt));
+    if (steps() == 0 && car.lateral_speed_mps != 0) {
+      // A sideways start (a car sliding into a pole): one step's push of m dv / dt at the centre of mass.
+      const vehicle::Pose body = chassis.bodyPose();
+      const Eigen::Vector3d left = body.orientation * Eigen::Vector3d::UnitY();
+      world.addForce({vehicle::EntityRef::Kind::Car, car.id},
+                     chassis.mass_kg() * car.lateral_speed_mps / dt * left, body.position_m);
+    }
+  }
+  simulation_->step();
+  const vehicle::StepTimings timings = simulation_->lastTimings();
+  times_.physics_ms += timings.physics_ms;
+  times_.deform_ms += timings.deform_ms;
+}
+
+void SceneRun::stepUntil(double t_s) {
+  const double half_step = 0.5 / scene_.physics_hz;
+  while (!finished() && time_s() < t_s - half_step) step();
+}
+
+void SceneRun::runToEnd() {
+  while (!finished()) step();
+}
+
+bool SceneRun::diverged() const {
+  for (const Car& car : cars_) {
+    if (simulation_->metrics(car.id).diverged) return true;
+  }
+  return false;
+}
+
+namespace {
+
+nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
+  nlohmann::json j;
+  j["impact_speed_mps"] = m.impact_speed_mps;
+  j["rebound_speed_mps"] = m.rebound_speed_mps;
+  j["restitution"] = m.restitution;
+  j["residual_crush_m"] = m.residual_crush_m;
+  j["max_residual_crush_m"] = m.max_residual_crush_m;
+  j["max_dynamic_crush_m"] = m.max_dynamic_crush_m;
+  j["energy"] = {{"kinetic_initial_J", m.energy.kinetic_initial_J},
+                 {"plastic_work_J", m.energy.plastic_work_J},
+                 {"dissipated_J", m.energy.dissipated_J},
+                 {"kinetic_final_J", m.energy.kinetic_final_J}};
+  j["max_deviation_m"] = m.max_deviation_m;
+  j["max_penetration_m"] = m.max_penetration_m;
+  j["tunnelled"] = m.tunnelled;
+  j["diverged"] = m.diverged;
+  j["impacted"] = m.impacted;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json SceneRun::summary() const {
+  nlohmann::json out;
+  out["scene"] = scene_.name;
+  out["source"] = scene_.source;
+  bool any_diverged = false;
+  nlohmann::json cars = nlohmann::json::array();
+  for (std::size_t i = 0; i < cars_.size(); ++i) {
+    const vehicle::CrashMetrics m = simulation_->metrics(cars_[i].id);
+    any_diverged = any_diverged || m.diverged;
+    nlohmann::json car = metricsJson(m);
+    car["name"] = scene_.vehicles[i].name;
+    const vehicle::Car& chassis = simulation_->world().car(cars_[i].id);
+    const Eigen::Vector3d p = chassis.vehiclePose().position_m;
+    car["final_position_m"] = {p.x(), p.y(), p.z()};
+    car["final_speed_mps"] = chassis.velocity_mps().norm();
+    if (i == 0) {
+      for (auto it = car.begin(); it != car.end(); ++it) out[it.key()] = it.value();
+    }
+    cars.push_back(car);
+  }
+  out["diverged"] = any_diverged;
+  out["cars"] = cars;
+  out["state_hash"] = hashHex(simulation_->stateHash());
+  out["steps"] = steps();
+  out["time_s"] = time_s();
+  out["physics_hz"] = scene_.physics_hz;
+  out["timing_ms"] = {{"physics", times_.physics_ms},
+                      {"deform", times_.deform_ms},
+                      {"embed", times_.embed_ms},
+                      {"render", times_.render_ms},
+                      {"total", times_.total_ms}};
+  return out;
+}
+
+std::vector<std::string> SceneRun::timelineColumns() const {
+  std::vector<std::string> columns = {"time_s", "step"};
+  for (const VehicleConfig& v : scene_.vehicles) {
+    for (const char* c :
+         {"x_m", "y_m", "z_m", "speed_kmh", "heading_deg", "tilt_deg", "throttle", "brake", "steering",
+          "max_deviation_m", "max_dynamic_crush_m", "residual_crush_m", "plastic_work_J"}) {
+      columns.push_back(v.name + "." + c);
+    }
+  }
+  return columns;
+}
+
+std::vector<double> SceneRun::timelineValues() const {
+  std::vector<double> values = {time_s(), static_cast<double>(steps())};
+  for (const Car& car : cars_) {
+    const vehicle::Car& chassis = simulation_->world().car(car.id);
+    const vehicle::Pose pose = chassis.vehiclePose();
+    const Eigen::Vector3d forward = pose.orientation * Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d up = pose.orientation * Eigen::Vector3d::UnitZ();
+    const vehicle::CrashMetrics m = simulation_->metrics(car.id);
+    const vehicle::DriverInput& input = chassis.input();
+    values.insert(
+        values.end(),
+        {pose.position_m.x(), pose.position_m.y(), pose.position_m.z(), chassis.velocity_mps().norm() * 3.6,
+         std::atan2(forward.y(), forward.x()) / kDegree, std::acos(std::clamp(up.z(), -1.0, 1.0)) / kDegree,
+         input.throttle, input.brake, input.steering, m.max_deviation_m, m.max_dynamic_crush_m,
+         m.residual_crush_m, m.energy.plastic_work_J});
+  }
+  return values;
+}
+
+}  // namespace scenes
