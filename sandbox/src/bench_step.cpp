@@ -1,7 +1,135 @@
+// `sandbox bench step`: the cost of one step of the deformable body (deform/deformable_body.hpp) under
+// a contact: a wall pressed 5 cm into the front of the car for every measured step.
+#include <deform/body_settings.hpp>
+#include <deform/control_mesh.hpp>
+#include <deform/deformable_body.hpp>
+#include <deform/error.hpp>
+#include <deform/masses.hpp>
+#include <deform/mesh_import.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
 
 namespace sandbox {
+namespace {
 
-void registerBenchStepCommand(CLI::App& bench) { (void)bench; }
+struct BenchStepFlags {
+  std::string mesh = "builtin:sedan";
+  std::size_t control_points = 60;
+  uint32_t substeps = 4;
+  uint32_t iterations = 1;
+  std::size_t steps = 200;  ///< measured steps
+  std::size_t warmup = 20;  ///< steps before measuring (the wall has crushed the front by then)
+  double dt_s = 1.0 / 60;
+  double mass_kg = 1500;
+  bool json = false;
+};
+
+void check(const BenchStepFlags& f) {
+  if (f.control_points < 4)
+    throw deform::InputError("--control-points: must be at least 4 (got " + std::to_string(f.control_points) +
+                             ")");
+  if (f.substeps < 1) throw deform::InputError("--substeps: must be at least 1 (got 0)");
+  if (f.iterations < 1) throw deform::InputError("--iterations: must be at least 1 (got 0)");
+  if (f.steps < 1) throw deform::InputError("--steps: must be at least 1 (got 0)");
+  if (!(std::isfinite(f.dt_s) && f.dt_s > 0)) throw deform::InputError("--dt: must be finite and > 0");
+  if (!(std::isfinite(f.mass_kg) && f.mass_kg > 0))
+    throw deform::InputError("--mass-kg: must be finite and > 0");
+}
+
+void runBenchStep(const BenchStepFlags& f) {
+  check(f);
+  const deform::VehicleModel model = deform::loadVehicleModel(f.mesh);
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(model.body.positions_m.size());
+  for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
+  const deform::ControlMesh mesh = deform::buildControlMesh(points, f.control_points, f.mesh.c_str());
+  const deform::MassSplit masses = deform::distributeMass(mesh, f.mass_kg);
+  const auto settings = std::make_shared<const deform::BodySettings>(
+      deform::createBodySettings(mesh, masses, deform::BodyDescription{}));
+  deform::SolverParams params;
+  params.substeps = f.substeps;
+  params.iterations = f.iterations;
+  params.sleep_delay_s = -1;  // measure work, not sleep
+  deform::DeformableBody body(settings, params);
+
+  // A wall across the front, 5 cm into the body: solid where x > front - 0.05.
+  double front_m = -1e300;
+  for (const auto& p : mesh.points_m) front_m = std::max(front_m, p.x());
+  deform::StepInputs inputs;
+  inputs.contacts.push_back(deform::HalfSpaceShape{{-1, 0, 0}, -(front_m - 0.05)});
+  inputs.chassis.gravity_mps2 = {0, 0, -9.81};
+
+  uint32_t contact_points = 0;
+  for (std::size_t k = 0; k < f.warmup; ++k) body.step(inputs, f.dt_s);
+  std::vector<double> us(f.steps);
+  for (std::size_t k = 0; k < f.steps; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const deform::StepReport report = body.step(inputs, f.dt_s);
+    us[k] = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    contact_points = std::max(contact_points, report.contact_points / f.substeps);
+  }
+  std::nth_element(us.begin(), us.begin() + static_cast<std::ptrdiff_t>(us.size() / 2), us.end());
+  const double median_us = us[us.size() / 2];
+  const std::size_t constraints = settings->constraintCount();
+  const double ns_per = median_us * 1e3 / (static_cast<double>(constraints) * f.substeps * f.iterations);
+
+  nlohmann::ordered_json r;
+  r["mesh"] = f.mesh;
+  r["control_points"] = settings->pointCount();
+  r["constraints"] = constraints;
+  r["edges"] = settings->edges.size();
+  r["spokes"] = settings->spokes.size();
+  r["bends"] = settings->bends.size();
+  r["substeps"] = f.substeps;
+  r["iterations"] = f.iterations;
+  r["dt_s"] = f.dt_s;
+  r["steps"] = f.steps;
+  r["contact_points"] = contact_points;
+  r["us_per_step"] = median_us;
+  r["ns_per_constraint_iteration"] = ns_per;
+  r["max_deviation_m"] = deform::maxDeviation(*settings, body.state());
+  if (f.json) {
+    std::printf("%s\n", r.dump(2).c_str());
+    return;
+  }
+  std::printf("deformation step: %zu control points, %zu constraints (%zu edges, %zu spokes, %zu bends)\n",
+              settings->pointCount(), constraints, settings->edges.size(), settings->spokes.size(),
+              settings->bends.size());
+  std::printf("  %u substeps x %u iterations, dt %.6g s, wall 5 cm into the front (%u points in contact)\n",
+              f.substeps, f.iterations, f.dt_s, contact_points);
+  std::printf("  median %.2f us per step, %.2f ns per constraint per iteration (%zu steps)\n", median_us,
+              ns_per, f.steps);
+}
+
+}  // namespace
+
+void registerBenchStepCommand(CLI::App& bench) {
+  auto flags = std::make_shared<BenchStepFlags>();
+  auto* step = bench.add_subcommand("step", "Median cost of one step of the deformable body under a contact");
+  step->add_option("--mesh", flags->mesh,
+                   "builtin:sedan[?vertices=N], builtin:can, builtin:box or a mesh file")
+      ->capture_default_str();
+  step->add_option("--control-points", flags->control_points, "Control points N (level of detail)")
+      ->capture_default_str();
+  step->add_option("--substeps", flags->substeps, "Substeps per step")->capture_default_str();
+  step->add_option("--iterations", flags->iterations, "Gauss-Seidel iterations per substep")
+      ->capture_default_str();
+  step->add_option("--steps", flags->steps, "Measured steps")->capture_default_str();
+  step->add_option("--warmup", flags->warmup, "Steps before measuring")->capture_default_str();
+  step->add_option("--dt", flags->dt_s, "Time step [s]")->capture_default_str();
+  step->add_option("--mass-kg", flags->mass_kg, "Vehicle mass [kg]")->capture_default_str();
+  step->add_flag("--json", flags->json, "Print one JSON object");
+  step->callback([flags] { runBenchStep(*flags); });
+}
 
 }  // namespace sandbox
