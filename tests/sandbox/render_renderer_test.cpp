@@ -6,13 +6,20 @@
 #include <deform/mesh_import.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
 #include <vector>
 
+#include "render/frame_output.hpp"
 #include "render/renderer.hpp"
 #include "render/vehicle_meshes.hpp"
 #include "render_test_support.hpp"
 
 using namespace sandbox::render;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -176,4 +183,76 @@ TEST_CASE("fitCamera keeps every corner of the box inside the picture margin", "
     CHECK(touches == Approx(1.0f).epsilon(0.02));  // fitted, not merely inside
   }
   CHECK_THROWS_WITH(presetCamera("fisheye", box, 1.0f), Catch::Contains("--camera"));
+}
+
+TEST_CASE("rendered frames become PNGs and an MP4 through FrameOutput", "[render]") {
+  const fs::path dir = fs::temp_directory_path() / "sandbox_render_frames_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const deform::VehicleModel model = deform::loadVehicleModel("builtin:sedan?vertices=3000");
+  Renderer renderer({kWidth, kHeight, 0});
+  for (const MeshData& mesh : vehicleMeshes(model)) renderer.addMesh(mesh);
+  const deform::Aabb box = vehicleBounds(model);
+  const bool video = VideoWriter::available("ffmpeg") && VideoWriter::available("ffprobe");
+  if (!video) WARN("ffmpeg or ffprobe is not installed: only PNG frames are checked");
+  FrameOutputSettings settings;
+  settings.png_folder = dir.string();
+  if (video) settings.video_path = (dir / "video.mp4").string();
+  settings.video = {kWidth, kHeight, 25.0};
+  FrameOutput output(settings);
+  constexpr int kFrames = 4;
+  for (int i = 0; i < kFrames; ++i) {
+    // The car drives 0.5 m forward per frame under a chase camera.
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(0.5 * i, 0.0, 0.0);
+    Eigen::Matrix4f model_matrix = Eigen::Matrix4f::Identity();
+    model_matrix(0, 3) = static_cast<float>(pose.translation().x());
+    // Meshes 0.. are the body, then tyre and two caps per wheel: all move with the car.
+    for (Renderer::MeshId id = 0; id < 1 + 3 * model.wheels.size(); ++id) {
+      Eigen::Matrix4f placed = model_matrix;
+      if (id > 0) placed.block<3, 1>(0, 3) += model.wheels[(id - 1) / 3].centre_m.cast<float>();
+      renderer.setTransform(id, placed);
+    }
+    output.add(renderer.renderImage(chaseCamera(pose, 7.0, 2.5), environmentAround(box)));
+  }
+  output.finish();
+  for (int i = 0; i < kFrames; ++i) {
+    const Image frame = readPng(output.pngPath(i));
+    CHECK(frame.width == kWidth);
+    CHECK(frame.height == kHeight);
+  }
+  if (video) {
+    FILE* pipe =
+        popen(("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+               "-of csv=p=0 " +
+               shellQuote(settings.video_path))
+                  .c_str(),
+              "r");
+    char buffer[64] = {};
+    REQUIRE(pipe != nullptr);
+    const bool read = std::fgets(buffer, sizeof buffer, pipe) != nullptr;
+    pclose(pipe);
+    REQUIRE(read);
+    CHECK(std::atoi(buffer) == kFrames);
+  }
+  CHECK_THROWS_WITH(FrameOutput({(dir / "missing").string(), "", {}}), Catch::Contains("missing"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("chaseCamera sits behind and above the car along its heading", "[render]") {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(100.0, -20.0, 0.7);
+  // Heading +Y (yawed 90 degrees left) and pitched a little: the camera ignores the pitch.
+  pose.linear() = (Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()))
+                      .toRotationMatrix();
+  const Camera camera = chaseCamera(pose, 9.0, 3.0);
+  CHECK(camera.eye_m.x() == Approx(100.0f).margin(1e-3));
+  CHECK(camera.eye_m.y() == Approx(-29.0f).margin(1e-3));
+  CHECK(camera.eye_m.z() == Approx(3.7f).margin(1e-3));
+  CHECK(camera.target_m.y() > -20.0f);  // looks ahead of the car
+  // The car's centre projects onto the picture's vertical centre line.
+  const Eigen::Vector3f pixel = projectToPixel(camera, pose.translation().cast<float>(), kWidth, kHeight);
+  CHECK(pixel.x() == Approx(kWidth / 2.0f).margin(0.5));
+  CHECK(pixel.z() > 0.0f);
 }
