@@ -53,6 +53,7 @@ TEST_CASE("below yield a pressed body returns to its rest shape and keeps its re
   DeformableBody body = pressAndRelease(settings, 0.015);  // strain 1.5 % < 2 %
   const BodyState& s = body.state();
   // Tolerance 0.05 mm: what 2 s of damping at 20/s leaves of the release.
+  WARN("1.5 cm press below yield: back to rest within " << maxDeviation(*settings, s) * 1e3 << " mm");
   CHECK(maxDeviation(*settings, s) < 5e-5);
   CHECK(s.edge_rest_m == settings->edge_rest_m);  // bit-identical: no flow at all
   CHECK(s.spoke_rest_m == settings->spoke_rest_m);
@@ -72,6 +73,8 @@ TEST_CASE("above yield the permanent set matches the excess over yield and grows
     const double expected = kRadius_m * (s - yield) / (1 - yield);
     INFO("press " << delta << " m: set " << set << " m, expected " << expected << " m, plastic work "
                   << body.state().plastic_work_J << " J");
+    WARN("press " << delta << " m: set " << set * 1e3 << " mm, excess over yield " << expected * 1e3
+                  << " mm (" << (set / expected - 1) * 100 << " %)");
     CHECK(set == Approx(expected).epsilon(0.02));  // within 2 % of the excess over yield
     // Uniform: every point has the same set (1 %).
     for (const auto& p : body.state().positions_m)
@@ -89,6 +92,8 @@ TEST_CASE("the permanent set is bounded by the visual constraint", "[dynamics]")
   DeformableBody body = pressAndRelease(settings, 0.3);  // pressed far past the visual limit
   const double set = kRadius_m - meanRadius(*settings, body.state());
   INFO("set " << set << " m, limit " << max_deviation << " m");
+  WARN("press 0.3 m with a 4 cm visual limit: set " << set * 1e3 << " mm, largest deviation "
+                                                    << maxDeviation(*settings, body.state()) * 1e3 << " mm");
   CHECK(set > 0.5 * max_deviation);
   CHECK(maxDeviation(*settings, body.state()) <= max_deviation * (1 + 1e-12));
 }
