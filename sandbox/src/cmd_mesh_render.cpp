@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "mesh_options.hpp"
 #include "render/colour_ramp.hpp"
+#include "render/marker.hpp"
 #include "render/renderer.hpp"
 #include "render/vehicle_meshes.hpp"
 
@@ -38,8 +39,9 @@ struct MeshRenderFlags {
 
 // Colours every body vertex by the weight control point `point` has on it, scaled so the largest weight
 // is red: weights of hull points that sit off the surface never reach 1, and the ramp should be used.
+// The control point itself is returned in `point_m`, to be marked.
 std::vector<Eigen::Vector3f> influenceColours(const deform::Mesh& body, const MeshRenderFlags& flags,
-                                              uint32_t point) {
+                                              uint32_t point, Eigen::Vector3f& point_m) {
   std::vector<Eigen::Vector3d> points(body.positions_m.size());
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = body.positions_m[i].cast<double>();
   const deform::ControlMesh control =
@@ -57,6 +59,7 @@ std::vector<Eigen::Vector3f> influenceColours(const deform::Mesh& body, const Me
     weights[j] = skin.weight(j, point);
     largest = std::max(largest, weights[j]);
   }
+  point_m = control.points_m[point].cast<float>();
   std::vector<Eigen::Vector3f> colours(weights.size());
   for (std::size_t j = 0; j < weights.size(); ++j) {
     colours[j] = render::heatColour(largest > 0.0f ? weights[j] / largest : 0.0f);
@@ -83,8 +86,12 @@ void runMeshRender(const MeshRenderFlags& flags) {
   const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   std::vector<render::MeshData> meshes = render::vehicleMeshes(model);
   if (flags.heatmap_point) {
-    meshes.front().colours = influenceColours(model.body, flags, *flags.heatmap_point);
+    Eigen::Vector3f point_m;
+    meshes.front().colours = influenceColours(model.body, flags, *flags.heatmap_point, point_m);
     meshes.front().specular = 0.2f;  // a glossy highlight would read as a colour of the ramp
+    // A dark bead on the control point (which sits on the hull, possibly off the surface).
+    const float radius = 0.012f * static_cast<float>(deform::boundingBox(model.body).diagonal_m());
+    meshes.push_back(render::markerSphere(point_m, radius, {0.05f, 0.05f, 0.05f}));
   }
 
   const auto start = std::chrono::steady_clock::now();

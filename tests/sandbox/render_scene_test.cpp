@@ -5,6 +5,7 @@
 
 #include <utility>
 
+#include "render/marker.hpp"
 #include "render/scene.hpp"
 
 using sandbox::render::isClosedOutward;
@@ -28,4 +29,12 @@ TEST_CASE("isClosedOutward accepts closed outward meshes and nothing else", "[re
   CHECK_FALSE(isClosedOutward(open));  // a hole
 
   CHECK_FALSE(isClosedOutward(deform::Mesh{}));
+}
+
+TEST_CASE("markerSphere is a closed sphere of the given radius around its centre", "[render]") {
+  const sandbox::render::MeshData marker =
+      sandbox::render::markerSphere({1.0f, 2.0f, 3.0f}, 0.25f, {1, 1, 1});
+  CHECK(marker.closed);
+  for (const Eigen::Vector3f& p : marker.positions_m) CHECK(p.norm() == Approx(0.25f).epsilon(1e-5));
+  CHECK(marker.model.block<3, 1>(0, 3).isApprox(Eigen::Vector3f(1.0f, 2.0f, 3.0f)));
 }
