@@ -107,6 +107,7 @@ Car::Car(dxWorld* world, dxSpace* space, void* geom_data, const deform::ControlM
 Car::~Car() {
   if (ray_) dGeomDestroy(ray_);
   if (convex_ && convex_->geom) dGeomDestroy(convex_->geom);
+  if (core_ && core_->geom) dGeomDestroy(core_->geom);
   if (body_) dBodyDestroy(body_);
 }
 
@@ -165,6 +166,29 @@ void Car::setCollisionHull(const deform::ControlMesh& hull) {
   }
   convex_->data = std::move(fresh);  // moving keeps the buffers ODE points into
   hull_ = hull;
+}
+
+void Car::setCoreHull(double allowance_m, void* geom_data) {
+  if (core_ && core_->geom) dGeomDestroy(core_->geom);
+  core_.reset();
+  if (!(allowance_m > 0)) return;
+  // Each point moved the stroke horizontally towards the centre of mass (at most to a tenth of its
+  // distance); heights kept, so the core is as tall as the car and a wall cannot lift it over itself.
+  std::vector<Eigen::Vector3d> inner;
+  for (const auto& p : hull_.points_m) {
+    const Eigen::Vector3d r = p - centre_of_mass_m_;
+    const double length = std::hypot(r.x(), r.y());
+    const double keep = length > 0 ? std::max(0.1, 1.0 - allowance_m / length) : 1.0;
+    inner.emplace_back(r.x() * keep, r.y() * keep, r.z());
+  }
+  const deform::ControlMesh core = deform::convexHull(inner, "crush backstop");
+  core_ = std::make_unique<ConvexGeom>();
+  core_->data = ode::makeConvexData(core.points_m, core.triangles);
+  core_->geom =
+      dCreateConvex(space_, core_->data.planes.data(), core_->data.face_count, core_->data.points.data(),
+                    core_->data.point_count, core_->data.polygons.data());
+  dGeomSetBody(core_->geom, body_);
+  dGeomSetData(core_->geom, geom_data);
 }
 
 ObstacleShape Car::shape() const {

@@ -83,6 +83,9 @@ struct DeformableCar {
   std::unique_ptr<deform::DeformableBody> body;
   CrushShapes shapes;
   std::vector<EntityRef> touching;  ///< crushable entities in contact this step
+  /// Its control points in the world before this step's deformation: what other cars dent against
+  /// (taken for every car first, so the order cars are stepped in does not matter).
+  ObstacleShape world_shape;
 
   // Coupling.
   bool force_pending = false;
@@ -102,6 +105,9 @@ struct DeformableCar {
   double impact_separation_m = 0;  ///< normal . (com - other's interior point) at impact [m]
   double plastic_at_impact_J = 0;
   double plastic_before_step_J = 0;
+  /// Energy the body took in (plastic work, change of its elastic and kinetic energy) that the crush
+  /// force has not yet taken from the chassis [J].
+  double energy_debt_J = 0;
 };
 
 struct Simulation::Impl {
@@ -127,17 +133,24 @@ struct Simulation::Impl {
   ObstacleShape worldShapeOf(EntityRef e) const {
     if (e.kind == EntityRef::Kind::Car && e.index < index_of.size() && index_of[e.index] >= 0) {
       const DeformableCar& other = of(e.index);
-      const Pose pose = world.car(e.index).vehiclePose();
-      ObstacleShape s;
-      s.type = ShapeType::Convex;
-      for (const auto& p : other.body->state().positions_m) {
-        s.vertices_m.push_back(pose.toWorld(p));
-        s.centre_m += s.vertices_m.back();
-      }
-      s.centre_m /= static_cast<double>(s.vertices_m.size());
-      return s;
+      if (!other.world_shape.vertices_m.empty()) return other.world_shape;
+      return snapshotShape(other);
     }
     return world.shapeOf(e);
+  }
+
+  /// A deformable car's control points now, in the world, as a convex shape.
+  ObstacleShape snapshotShape(const DeformableCar& dc) const {
+    const Pose pose = world.car(dc.id).vehiclePose();
+    ObstacleShape s;
+    s.type = ShapeType::Convex;
+    s.centre_m.setZero();
+    for (const auto& p : dc.body->state().positions_m) {
+      s.vertices_m.push_back(pose.toWorld(p));
+      s.centre_m += s.vertices_m.back();
+    }
+    s.centre_m /= static_cast<double>(s.vertices_m.size());
+    return s;
   }
 
   void stepCar(DeformableCar& dc);
@@ -215,12 +228,15 @@ void Simulation::step() {
   }
   m.world.step();
   const auto t1 = Clock::now();
+  for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
   for (std::size_t i = 0; i < m.cars.size(); ++i) {
     DeformableCar& dc = *m.cars[i];
     // Work of the crush force over the step: F . v at the midpoint of the step [J].
     if (dc.force_pending) {
       const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + m.world.car(dc.id).velocity_mps());
-      dc.metrics.energy.crush_work_J -= dc.force_N.dot(v_mid) * m.world.fixedDt_s();
+      const double work_J = -dc.force_N.dot(v_mid) * m.world.fixedDt_s();
+      dc.metrics.energy.crush_work_J += work_J;
+      dc.energy_debt_J = std::max(0.0, dc.energy_debt_J - work_J);
     }
     m.stepCar(dc);
     m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
@@ -253,11 +269,17 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   dc.shapes.clear();
   for (const EntityRef& other : dc.touching) {
     const ObstacleShape local = transformShape(worldShapeOf(other), frame);
-    const Eigen::Vector3d relative = to_vehicle * (car.velocity_mps() - velocityOf(other));
-    const double speed = relative.norm();
-    const Eigen::Vector3d sweep = speed > 1e-9
-                                      ? Eigen::Vector3d(relative * ((2.0 * speed * dt + 0.05) / speed))
-                                      : Eigen::Vector3d::Zero();
+    // Sweep away from the car: against the contact normals, as far as the closing motion of a step.
+    Eigen::Vector3d normal{0, 0, 0};
+    for (const CarContact& c : contacts)
+      if (c.other == other) normal += c.normal;
+    Eigen::Vector3d sweep{0, 0, 0};
+    if (normal.norm() > 1e-12) {
+      normal.normalize();
+      const double closing =
+          std::max(0.0, -(to_vehicle * (car.velocity_mps() - velocityOf(other))).dot(normal));
+      sweep = -(2.0 * closing * dt + 0.05) * normal;
+    }
     dc.shapes.add(local, sweep);
   }
   inputs.contacts = dc.shapes.shapes();
@@ -301,7 +323,10 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
       }
 
   dc.plastic_before_step_J = state.plastic_work_J;
+  const double body_before_J = deform::bodyEnergy(*dc.body_settings, state).total_J();
   const deform::StepReport report = dc.body->step(inputs, dt);
+  const double absorbed_J = dc.body->state().plastic_work_J - dc.plastic_before_step_J +
+                            deform::bodyEnergy(*dc.body_settings, dc.body->state()).total_J() - body_before_J;
 
   // Crush: the spokes' elastic forces on the core, (l - L) / alpha along each spoke, are the crumple's
   // resistance carried into the chassis (quasi-static: they balance the contact forces on the shell).
@@ -318,10 +343,33 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
       if (length < deform::kMinConstraintLength_m) continue;
       force += ((length - s.spoke_rest_m[k]) / spoke.compliance_m_per_N / length) * d;
     }
+    // Energy consistency: the shell's point masses that the obstacle stops lose their momentum, which the
+    // chassis (carrying the whole mass in ODE) must lose too; and with few iterations the spokes need not
+    // carry all of the contact's load. So when the body took in more energy than the spoke force will
+    // take from the chassis over the next step (at the speed it closes now), the force is raised to
+    // charge the difference (along the contact normal), at most to what would stop the chassis within the
+    // step.
+    dc.energy_debt_J += absorbed_J;
+    Eigen::Vector3d world_force = frame.orientation * force;
+    Eigen::Vector3d normal{0, 0, 0};  // out of what the car hits (world)
+    for (const CarContact& c : contacts)
+      if (crushable(world, c.other)) normal += frame.orientation * c.normal;
+    if (normal.norm() > 1e-12 && dc.energy_debt_J > 0) {
+      normal.normalize();
+      const double closing_mps = -car.velocity_mps().dot(normal);
+      const double travel_m = closing_mps * dt;
+      const double along_N = world_force.dot(normal);
+      if (travel_m > 1e-6) {
+        const double needed_N = dc.energy_debt_J / travel_m;
+        const double stop_N = car.mass_kg() * closing_mps / dt;
+        const double raised_N = std::clamp(needed_N, along_N, std::max(along_N, stop_N));
+        world_force += (raised_N - along_N) * normal;
+      }
+    }
     const Eigen::Vector3d at = pushed > 0 ? Eigen::Vector3d(pushed_sum / pushed) : bs.core_m;
-    dc.force_N = frame.orientation * force;
+    dc.force_N = world_force;
     dc.force_point_m = frame.toWorld(at);
-    dc.force_pending = force.allFinite();
+    dc.force_pending = world_force.allFinite();
     dc.force_others = dc.touching;
   }
 
@@ -437,8 +485,13 @@ CrashMetrics Simulation::metrics(CarId car) const {
   const DeformableCar& dc = impl_->of(car);
   CrashMetrics out = dc.metrics;
   if (!out.impacted) return out;
-  const std::vector<double> crush = crushProfile(dc.mesh, dc.body->state().positions_m,
-                                                 dc.impact_direction_vehicle, dc.body_settings->core_m.z());
+  // At the height of the struck end's most protruding rest point (the bumper, for a frontal impact).
+  const auto& rest = dc.body_settings->rest_positions_m;
+  std::size_t lead = 0;
+  for (std::size_t i = 1; i < rest.size(); ++i)
+    if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;
+  const std::vector<double> crush =
+      crushProfile(dc.mesh, dc.body->state().positions_m, dc.impact_direction_vehicle, rest[lead].z());
   if (!crush.empty()) {
     double sum = 0;
     for (double c : crush) {

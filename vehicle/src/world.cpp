@@ -33,6 +33,7 @@ void installHandlers() {
 }
 
 constexpr uint32_t kCarKind = 0, kObstacleKind = 1;
+constexpr uint32_t kCarCoreKind = 2;  ///< a car's crush backstop geom
 
 std::string fieldMessage(const char* field, const std::string& rule, double value) {
   return std::string(field) + ": " + rule + " (got " + std::to_string(value) + ")";
@@ -114,12 +115,12 @@ struct World::Impl {
   double frictionOf(dGeomID geom) const {
     uint32_t kind = 0, index = 0;
     if (!ode::unpackEntity(dGeomGetData(geom), kind, index)) return 0.6;
-    return kind == kCarKind ? cars[index]->settings().body_friction : obstacles[index].friction;
+    return kind == kObstacleKind ? obstacles[index].friction : cars[index]->settings().body_friction;
   }
   static EntityRef entityOf(dGeomID geom) {
     uint32_t kind = 0, index = 0;
     ode::unpackEntity(dGeomGetData(geom), kind, index);
-    return {kind == kCarKind ? EntityRef::Kind::Car : EntityRef::Kind::Obstacle, index};
+    return {kind == kObstacleKind ? EntityRef::Kind::Obstacle : EntityRef::Kind::Car, index};
   }
 
   static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
@@ -127,21 +128,26 @@ struct World::Impl {
     dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
     if (b1 == nullptr && b2 == nullptr) return;
     if (b1 == b2) return;
+    // Crush (setCrushAllowance): a car's hull only detects what it crushes into (the deformable body
+    // resists it); its backstop core is rigid against it. Cores ignore the ground, ramps and soft hulls.
+    const GeomRole r1 = self->roleOf(g1), r2 = self->roleOf(g2);
+    const bool crushable = self->crushable(g1) && self->crushable(g2);
+    if ((r1 == GeomRole::Core || r2 == GeomRole::Core) &&
+        (!crushable || r1 == GeomRole::SoftHull || r2 == GeomRole::SoftHull))
+      return;
+    const bool soft = crushable && (r1 == GeomRole::SoftHull || r2 == GeomRole::SoftHull);
     const int found =
         dCollide(g1, g2, static_cast<int>(self->scratch.size()), &self->scratch[0].geom, sizeof(dContact));
     const double mu = std::sqrt(self->frictionOf(g1) * self->frictionOf(g2));
-    const double allowance = self->pairAllowance(entityOf(g1), entityOf(g2));
     for (int i = 0; i < found; ++i) {
       dContact& c = self->scratch[static_cast<std::size_t>(i)];
-      if (c.geom.depth <= allowance) {  // within the crush stroke: the deformable body resists it
+      if (soft) {
         self->feedback.emplace_back();
         self->feedback_sign.push_back(0.0);
         self->contacts.push_back({entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal),
                                   c.geom.depth, Eigen::Vector3d::Zero(), false});
         continue;
       }
-      const double depth = c.geom.depth;
-      c.geom.depth -= allowance;  // the rigid backstop: only the depth past the stroke is corrected
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
       c.surface.mu = mu;
       c.surface.soft_erp = self->settings.contact_erp;
@@ -152,22 +158,24 @@ struct World::Impl {
       self->feedback_sign.push_back(b1 == nullptr ? -1.0 : 1.0);
       dJointSetFeedback(joint, &self->feedback.back());
       self->contacts.push_back({entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal),
-                                depth, Eigen::Vector3d::Zero(), true});
+                                c.geom.depth, Eigen::Vector3d::Zero(), true});
     }
   }
 
-  /// Crush allowance of a touching pair: the cars' allowances added; none against the ground or a ramp.
-  double pairAllowance(EntityRef a, EntityRef b) const {
-    double sum = 0;
-    for (const EntityRef& e : {a, b}) {
-      if (e.kind == EntityRef::Kind::Car) {
-        sum += crush_allowance_m[e.index];
-      } else {
-        const ObstacleKind kind = obstacles[e.index].kind;
-        if (kind == ObstacleKind::Ground || kind == ObstacleKind::Ramp) return 0;
-      }
-    }
-    return sum;
+  enum class GeomRole { Plain, SoftHull, Core };
+  GeomRole roleOf(dGeomID geom) const {
+    uint32_t kind = 0, index = 0;
+    if (!ode::unpackEntity(dGeomGetData(geom), kind, index)) return GeomRole::Plain;
+    if (kind == kCarCoreKind) return GeomRole::Core;
+    if (kind == kCarKind && crush_allowance_m[index] > 0) return GeomRole::SoftHull;
+    return GeomRole::Plain;
+  }
+  /// Anything but the ground and ramps.
+  bool crushable(dGeomID geom) const {
+    const EntityRef e = entityOf(geom);
+    if (e.kind == EntityRef::Kind::Car) return true;
+    const ObstacleKind kind = obstacles[e.index].kind;
+    return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
   }
 
   ObstacleId addObstacle(ObstacleEntry entry) {
@@ -482,6 +490,7 @@ ObstacleShape World::shapeOf(EntityRef entity) const {
 void World::setCrushAllowance(CarId id, double allowance_m) {
   requireNonNegative(allowance_m, "crush_allowance_m");
   impl_->crush_allowance_m.at(id) = allowance_m;
+  impl_->cars.at(id)->setCoreHull(allowance_m, ode::packEntity(kCarCoreKind, id));
 }
 
 double World::crushAllowance(CarId id) const {

@@ -93,6 +93,10 @@ class Car {
   /// Steering, engine, wheels (ray, suspension, tyre) and drag forces for a step of dt_s.
   void applyForces(double dt_s);
   void appendState(std::vector<double>& out) const;
+  /// The crush backstop (World::setCrushAllowance): a second convex geom on the chassis, the collision
+  /// hull with every point moved `allowance_m` towards the centre of mass (then re-hulled), tagged with
+  /// `geom_data`; none for an allowance of 0.
+  void setCoreHull(double allowance_m, void* geom_data);
 
   VehicleSettings settings_;
   std::vector<WheelSettings> wheel_settings_;
@@ -110,6 +114,7 @@ class Car {
   dxBody* body_ = nullptr;
   dxGeom* ray_ = nullptr;
   std::unique_ptr<ConvexGeom> convex_;
+  std::unique_ptr<ConvexGeom> core_;  ///< crush backstop, or null
 };
 
 }  // namespace vehicle

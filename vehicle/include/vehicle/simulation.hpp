@@ -47,11 +47,11 @@ struct DeformationSettings {
   /// Visual constraint: no control point moves further than this from its rest position [m].
   double max_deviation_m = 1.0;
   /// Elastic strain past which a constraint's rest length flows (the bumper's elastic range) [-].
-  double yield_strain = 0.004;
+  double yield_strain = 0.012;
   /// Linear hardening: plastic over elastic modulus [-] (crush force rising with crush).
   double hardening = 0.0;
   /// Compliance of the spokes (control point to core): the load path into the chassis [m/N].
-  double compliance_m_per_N = 1e-7;
+  double compliance_m_per_N = 1e-6;
   /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
   double shell_compliance_ratio = 4.0;
   /// Viscous damping of the control points' motion relative to the chassis [1/s].
@@ -95,7 +95,8 @@ struct CrashMetrics {
   double rebound_speed_mps = 0;
   double restitution = 0;
   /// Permanent crush as crash tests measure it: the intrusion of the struck end's profile at six equally
-  /// spaced stations across the width, at the height of the centre of mass, averaged [m] and the
+  /// spaced stations across the width, at the height of its most protruding rest point (the bumper),
+  /// averaged [m] and the
   /// largest [m] (of the control surface, from the rest shape to the shape now).
   double residual_crush_m = 0;
   double max_residual_crush_m = 0;

@@ -140,11 +140,12 @@ class World {
   /// Obstacle or car shape in the world.
   ObstacleShape shapeOf(EntityRef entity) const;
 
-  /// Crush coupling (simulation.hpp): contacts of car `id`'s chassis with anything but the ground and
-  /// ramps become rigid only past `allowance_m` of penetration (their depth is reduced by it; between two
-  /// cars the allowances add). Shallower ones are still listed by contacts(), with rigid false and no
-  /// force. 0 (the default) keeps every contact rigid. Throws deform::InputError for a negative or
-  /// non-finite allowance.
+  /// Crush coupling (simulation.hpp): car `id`'s hull no longer resists anything but the ground and
+  /// ramps (its contacts are still listed by contacts(), with rigid false and no force: the deformable
+  /// body resists them); a backstop core, the hull shrunk by `allowance_m` towards the centre of mass, is
+  /// rigid against them (and against other cars' cores), so no car intrudes further than its stroke.
+  /// 0 (the default) keeps the car rigid. Call again after Car::setCollisionHull. Throws
+  /// deform::InputError for a negative or non-finite allowance.
   void setCrushAllowance(CarId id, double allowance_m);
   double crushAllowance(CarId id) const;
   /// A force on a car's chassis or a free obstacle at a world point, for the next step only (static
