@@ -207,10 +207,11 @@ TEST_CASE("rendered frames become PNGs and an MP4 through FrameOutput", "[render
     pose.translation() = Eigen::Vector3d(0.5 * i, 0.0, 0.0);
     Eigen::Matrix4f model_matrix = Eigen::Matrix4f::Identity();
     model_matrix(0, 3) = static_cast<float>(pose.translation().x());
-    // Meshes 0.. are the body, then tyre and two caps per wheel: all move with the car.
-    for (Renderer::MeshId id = 0; id < 1 + 3 * model.wheels.size(); ++id) {
+    // Mesh 0 is the body, then one per wheel: all move with the car.
+    REQUIRE(vehicleMeshes(model).size() == 1 + model.wheels.size());
+    for (Renderer::MeshId id = 0; id < 1 + model.wheels.size(); ++id) {
       Eigen::Matrix4f placed = model_matrix;
-      if (id > 0) placed.block<3, 1>(0, 3) += model.wheels[(id - 1) / 3].centre_m.cast<float>();
+      if (id > 0) placed.block<3, 1>(0, 3) += model.wheels[id - 1].centre_m.cast<float>();
       renderer.setTransform(id, placed);
     }
     output.add(renderer.renderImage(chaseCamera(pose, 7.0, 2.5), environmentAround(box)));

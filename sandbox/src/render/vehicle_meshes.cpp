@@ -6,24 +6,25 @@
 namespace sandbox::render {
 namespace {
 
-// A flat disc facing +Y (or -Y) at `y_m` in the wheel frame: the hub cap that makes a plain tyre
-// cylinder read as a wheel. Drawn two-sided, so it is not marked closed.
-MeshData hubCap(double radius_m, double y_m) {
-  constexpr int kSegments = 24;
+// Appends a flat disc facing outwards at `y_m` (wheel frame, axle along Y): the hub cap that makes a
+// plain tyre cylinder read as a wheel. Wound counter-clockwise seen from outside, like the tyre.
+void appendHubCap(MeshData& wheel, double radius_m, double y_m) {
+  constexpr uint32_t kSegments = 24;
   const float side = y_m >= 0 ? 1.0f : -1.0f;
-  MeshData cap;
-  cap.positions_m.emplace_back(0.0f, static_cast<float>(y_m), 0.0f);
-  for (int i = 0; i < kSegments; ++i) {
+  const auto centre = static_cast<uint32_t>(wheel.positions_m.size());
+  wheel.positions_m.emplace_back(0.0f, static_cast<float>(y_m), 0.0f);
+  for (uint32_t i = 0; i < kSegments; ++i) {
     const double a = 2.0 * std::numbers::pi * i / kSegments;
-    cap.positions_m.emplace_back(static_cast<float>(radius_m * std::cos(a)), static_cast<float>(y_m),
-                                 static_cast<float>(radius_m * std::sin(a)));
+    wheel.positions_m.emplace_back(static_cast<float>(radius_m * std::cos(a)), static_cast<float>(y_m),
+                                   static_cast<float>(radius_m * std::sin(a)));
   }
-  cap.normals.assign(cap.positions_m.size(), Eigen::Vector3f(0.0f, side, 0.0f));
-  for (uint32_t i = 0; i < kSegments; ++i) cap.triangles.push_back({0, 1 + i, 1 + (i + 1) % kSegments});
-  cap.base_colour = kHubColour;
-  cap.specular = 0.5f;
-  cap.shininess = 40.0f;
-  return cap;
+  wheel.normals.resize(wheel.positions_m.size(), Eigen::Vector3f(0.0f, side, 0.0f));
+  wheel.colours.resize(wheel.positions_m.size(), kHubColour);
+  for (uint32_t i = 0; i < kSegments; ++i) {
+    // (x, z) = (cos a, sin a) turns from +X towards +Z, which is clockwise seen from +Y.
+    const uint32_t a = centre + 1 + i, b = centre + 1 + (i + 1) % kSegments;
+    wheel.triangles.push_back(side > 0 ? deform::Triangle{centre, b, a} : deform::Triangle{centre, a, b});
+  }
 }
 
 }  // namespace
@@ -36,15 +37,15 @@ std::vector<MeshData> vehicleMeshes(const deform::VehicleModel& model, const Eig
   for (const deform::WheelPart& wheel : model.wheels) {
     MeshData tyre = meshData(deform::makeWheelMesh(wheel.radius_m, wheel.width_m), kTyreColour);
     tyre.model.block<3, 1>(0, 3) = wheel.centre_m.cast<float>();
-    tyre.specular = 0.08f;  // rubber
-    tyre.shininess = 12.0f;
+    tyre.specular = 0.12f;  // rubber, and a little sheen on the caps
+    tyre.shininess = 16.0f;
+    tyre.colours.assign(tyre.positions_m.size(), kTyreColour);
+    // Caps 1 mm outside both side walls: clear of depth fighting, invisible as a gap. They make the
+    // wheel an open surface, so it is drawn two-sided (it is small: that costs nothing).
+    for (const double side : {-1.0, 1.0})
+      appendHubCap(tyre, 0.55 * wheel.radius_m, side * (wheel.width_m / 2.0 + 0.001));
+    tyre.closed = false;
     meshes.push_back(std::move(tyre));
-    // Caps a hair outside both side walls (1 mm: clear of depth fighting, invisible as a gap).
-    for (const double side : {-1.0, 1.0}) {
-      MeshData cap = hubCap(0.55 * wheel.radius_m, side * (wheel.width_m / 2.0 + 0.001));
-      cap.model = meshes.back().model;
-      meshes.push_back(std::move(cap));
-    }
   }
   return meshes;
 }
