@@ -14,10 +14,12 @@
 namespace vehicle {
 
 /// An obstacle shape (vehicle frame) plus a sweep: the support function of the Minkowski sum of the shape
-/// and the segment [0, sweep_m] (libccd / MPR input for shapes without an exact deform primitive).
+/// and the segments [0, sweep_m] and [0, down_m] (libccd / MPR input for shapes without an exact deform
+/// primitive).
 struct SweptShape {
   ObstacleShape shape;               ///< vehicle frame
   Eigen::Vector3d sweep_m{0, 0, 0};  ///< extension away from the car [m]
+  Eigen::Vector3d down_m{0, 0, 0};   ///< extension into the ground, for an obstacle standing on it [m]
   static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction);
 };
 
@@ -25,14 +27,18 @@ struct SweptShape {
 class CrushShapes {
  public:
   void clear();
-  /// Adds `shape` (vehicle frame, not a half-space) extended by `sweep_m`; boxes stay exact primitives
-  /// (extended along their axis closest to the sweep), the rest become support shapes.
-  void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m);
+  /// Adds `shape` (vehicle frame) extended by `sweep_m` and by `down_m` (into the ground under an obstacle
+  /// standing on it, so a point deep in a wall is never pushed out under it); boxes stay exact primitives
+  /// (extended along their axes closest to the extensions), the rest become support shapes.
+  void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m, const Eigen::Vector3d& down_m);
   const std::vector<deform::ContactShape>& shapes() const { return shapes_; }
+  /// The same obstacles without the extensions (for measuring what is left inside them).
+  const std::vector<deform::ContactShape>& exactShapes() const { return exact_; }
 
  private:
   std::vector<std::unique_ptr<SweptShape>> swept_;  ///< stable addresses for the support pointers
   std::vector<deform::ContactShape> shapes_;
+  std::vector<deform::ContactShape> exact_;
 };
 
 }  // namespace vehicle

@@ -91,9 +91,10 @@ struct DeformableCar {
   bool force_pending = false;
   Eigen::Vector3d force_N{0, 0, 0};  ///< crush force for the next step (world) [N]
   Eigen::Vector3d force_point_m{0, 0, 0};
-  std::vector<EntityRef> force_others;  ///< free bodies that take the reaction
-  bool hull_dirty = false;              ///< dented since the collision hull was last rebuilt
-  int quiet_steps = 0;                  ///< steps without a control point in contact
+  Eigen::Vector3d extra_force_N{0, 0, 0};  ///< the energy-debt charge, through the centre of mass (world) [N]
+  std::vector<EntityRef> force_others;     ///< free bodies that take the reaction
+  bool hull_dirty = false;                 ///< dented since the collision hull was last rebuilt
+  int quiet_steps = 0;                     ///< steps without a control point in contact
   Eigen::Vector3d previous_velocity_mps{0, 0, 0};
   double previous_kinetic_J = 0;
 
@@ -220,10 +221,11 @@ void Simulation::step() {
     kinetic_before.push_back(kineticEnergy(car));
     if (!dc->force_pending) continue;
     m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->force_N, dc->force_point_m);
+    m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->extra_force_N, car.bodyPose().position_m);
     for (const EntityRef& other : dc->force_others) {
       const bool other_deforms = other.kind == EntityRef::Kind::Car && other.index < m.index_of.size() &&
                                  m.index_of[other.index] >= 0;
-      if (!other_deforms) m.world.addForce(other, -dc->force_N, dc->force_point_m);
+      if (!other_deforms) m.world.addForce(other, -(dc->force_N + dc->extra_force_N), dc->force_point_m);
     }
   }
   m.world.step();
@@ -234,7 +236,7 @@ void Simulation::step() {
     // Work of the crush force over the step: F . v at the midpoint of the step [J].
     if (dc.force_pending) {
       const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + m.world.car(dc.id).velocity_mps());
-      const double work_J = -dc.force_N.dot(v_mid) * m.world.fixedDt_s();
+      const double work_J = -(dc.force_N + dc.extra_force_N).dot(v_mid) * m.world.fixedDt_s();
       dc.metrics.energy.crush_work_J += work_J;
       dc.energy_debt_J = std::max(0.0, dc.energy_debt_J - work_J);
     }
@@ -268,19 +270,30 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   inputs.contact_friction = dc.settings.contact_friction;
   dc.shapes.clear();
   for (const EntityRef& other : dc.touching) {
-    const ObstacleShape local = transformShape(worldShapeOf(other), frame);
-    // Sweep away from the car: against the contact normals, as far as the closing motion of a step.
+    const ObstacleShape world_shape = worldShapeOf(other);
+    const ObstacleShape local = transformShape(world_shape, frame);
+    // Sweep away from the car, against the contact normals. A point can be as deep as the deepest contact
+    // at the start of the step plus the step's closing travel; twice that keeps the near face the nearest.
     Eigen::Vector3d normal{0, 0, 0};
+    double deepest_m = 0;
     for (const CarContact& c : contacts)
-      if (c.other == other) normal += c.normal;
+      if (c.other == other) {
+        normal += c.normal;
+        deepest_m = std::max(deepest_m, c.depth_m);
+      }
     Eigen::Vector3d sweep{0, 0, 0};
     if (normal.norm() > 1e-12) {
       normal.normalize();
       const double closing =
           std::max(0.0, -(to_vehicle * (car.velocity_mps() - velocityOf(other))).dot(normal));
-      sweep = -(2.0 * closing * dt + 0.05) * normal;
+      sweep = -(2.0 * (deepest_m + closing * dt) + 0.05) * normal;
     }
-    dc.shapes.add(local, sweep);
+    // An obstacle standing on the ground (its lowest point within 5 cm of z = 0) reaches into it.
+    Eigen::Vector3d down{0, 0, 0};
+    if (world_shape.type != ShapeType::HalfSpace &&
+        supportPoint(world_shape, -Eigen::Vector3d::UnitZ()).z() < 0.05)
+      down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
+    dc.shapes.add(local, sweep, down);
   }
   inputs.contacts = dc.shapes.shapes();
 
@@ -350,7 +363,8 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     // charge the difference (along the contact normal), at most to what would stop the chassis within the
     // step.
     dc.energy_debt_J += absorbed_J;
-    Eigen::Vector3d world_force = frame.orientation * force;
+    const Eigen::Vector3d world_force = frame.orientation * force;
+    Eigen::Vector3d extra{0, 0, 0};
     Eigen::Vector3d normal{0, 0, 0};  // out of what the car hits (world)
     for (const CarContact& c : contacts)
       if (crushable(world, c.other)) normal += frame.orientation * c.normal;
@@ -363,13 +377,14 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
         const double needed_N = dc.energy_debt_J / travel_m;
         const double stop_N = car.mass_kg() * closing_mps / dt;
         const double raised_N = std::clamp(needed_N, along_N, std::max(along_N, stop_N));
-        world_force += (raised_N - along_N) * normal;
+        extra = (raised_N - along_N) * normal;
       }
     }
     const Eigen::Vector3d at = pushed > 0 ? Eigen::Vector3d(pushed_sum / pushed) : bs.core_m;
     dc.force_N = world_force;
     dc.force_point_m = frame.toWorld(at);
-    dc.force_pending = world_force.allFinite();
+    dc.extra_force_N = extra;  // through the centre of mass: it stands for momentum, not a moment
+    dc.force_pending = world_force.allFinite() && extra.allFinite();
     dc.force_others = dc.touching;
   }
 
@@ -427,7 +442,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
 
   mt.max_deviation_m = std::max(mt.max_deviation_m, deform::maxDeviation(*dc.body_settings, s));
   deform::Penetration pen;
-  for (const auto& shape : dc.shapes.shapes())
+  for (const auto& shape : dc.shapes.exactShapes())
     for (const auto& x : s.positions_m)
       if (deform::penetration(shape, x, pen))
         mt.max_penetration_m = std::max(mt.max_penetration_m, pen.depth_m);
