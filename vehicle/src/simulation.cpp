@@ -63,6 +63,8 @@ void checkDeformationSettings(const DeformationSettings& s) {
           "must be finite and positive", s.compliance_m_per_N);
   require(std::isfinite(s.shell_compliance_ratio) && s.shell_compliance_ratio > 0, "shell_compliance_ratio",
           "must be finite and positive", s.shell_compliance_ratio);
+  require(std::isfinite(s.shell_mass_fraction) && s.shell_mass_fraction > 0 && s.shell_mass_fraction <= 1,
+          "shell_mass_fraction", "must be in (0, 1]", s.shell_mass_fraction);
   require(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0", s.damping);
   require(std::isfinite(s.contact_friction) && s.contact_friction >= 0, "contact_friction",
           "must be finite and >= 0", s.contact_friction);
@@ -104,6 +106,10 @@ struct DeformableCar {
   Eigen::Vector3d impact_direction_vehicle{1, 0, 0};
   EntityRef impact_other;
   double impact_separation_m = 0;  ///< normal . (com - other's interior point) at impact [m]
+  Eigen::Vector3d impact_relative_velocity_mps{0, 0, 0};           ///< before the impact step (world) [m/s]
+  Eigen::Vector3d impact_com_m{0, 0, 0}, impact_other_m{0, 0, 0};  ///< at impact (world) [m]
+  Eigen::Vector3d impact_normal_sum{0, 0, 0};
+  int impact_steps = 0;  ///< steps of contact the impact normal has been averaged over
   double plastic_at_impact_J = 0;
   double plastic_before_step_J = 0;
   /// Energy the body took in (plastic work, change of its elastic and kinetic energy) that the crush
@@ -123,6 +129,13 @@ struct Simulation::Impl {
     if (id >= index_of.size() || index_of[id] < 0)
       throw std::out_of_range("car " + std::to_string(id) + " does not deform");
     return *cars[static_cast<std::size_t>(index_of[id])];
+  }
+
+  std::vector<Eigen::Vector3d> car_velocity_before;  ///< per CarId: velocity before this step [m/s]
+  Eigen::Vector3d velocityBefore(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car && e.index < car_velocity_before.size())
+      return car_velocity_before[e.index];
+    return velocityOf(e);
   }
 
   Eigen::Vector3d velocityOf(EntityRef e) const {
@@ -178,7 +191,8 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
   const std::string source = model.source.empty() ? "vehicle model" : model.source;
   dc->mesh = deform::buildControlMesh(points, deformation.control_points, source.c_str());
-  const deform::MassSplit masses = deform::distributeMass(dc->mesh, car.mass_kg);
+  const deform::MassSplit masses =
+      deform::distributeMass(dc->mesh, car.mass_kg * deformation.shell_mass_fraction);
   deform::BodyDescription description;
   deform::Material& m = description.material;
   m.spoke_compliance_m_per_N = deformation.compliance_m_per_N;
@@ -215,6 +229,9 @@ void Simulation::step() {
   // The crush forces found last step act during this one (on the car, and their reaction on free bodies).
   std::vector<Eigen::Vector3d> velocity_before;
   std::vector<double> kinetic_before;
+  m.car_velocity_before.clear();
+  for (CarId c = 0; c < m.world.carCount(); ++c)
+    m.car_velocity_before.push_back(m.world.car(c).velocity_mps());
   for (auto& dc : m.cars) {
     const Car& car = m.world.car(dc->id);
     velocity_before.push_back(car.velocity_mps());
@@ -419,24 +436,34 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   if (bad(car.bodyPose().position_m) || bad(car.velocity_mps())) mt.diverged = true;
 
   if (!mt.impacted && !dc.touching.empty()) {
-    // First impact: the normal of the contacts with the first thing touched, velocities before the step.
+    // First impact with the first thing touched: velocities before the step, positions now.
     const EntityRef other = dc.touching.front();
-    Eigen::Vector3d normal{0, 0, 0};
+    mt.impacted = true;
+    dc.impact_other = other;
+    dc.impact_relative_velocity_mps = velocity_before - velocityBefore(other);
+    dc.impact_com_m = car.bodyPose().position_m;
+    dc.impact_other_m = interiorPoint(worldShapeOf(other));
+    dc.impact_normal_sum.setZero();
+    dc.impact_steps = 0;
+    mt.energy.kinetic_initial_J = kinetic_before;
+    dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
+  }
+  // The impact normal: the depth-weighted normals of the contacts with what was hit over the first 10 ms
+  // (the very first contact of two rounded fronts can have any normal).
+  const int settle_steps = std::max(1, static_cast<int>(std::lround(0.01 / world.fixedDt_s())));
+  if (mt.impacted && dc.impact_steps < settle_steps) {
+    ++dc.impact_steps;
     for (const CarContact& c : world.carContacts(dc.id))
-      if (c.other == other) normal += car.vehiclePose().orientation * c.normal;
-    if (normal.norm() > 1e-12) {
-      mt.impacted = true;
-      dc.impact_normal = normal.normalized();
-      dc.impact_other = other;
+      if (c.other == dc.impact_other)
+        dc.impact_normal_sum += (c.depth_m + 1e-6) * (car.vehiclePose().orientation * c.normal);
+    if (dc.impact_normal_sum.norm() > 1e-12) {
+      dc.impact_normal = dc.impact_normal_sum.normalized();
       const Eigen::Vector3d horizontal =
           car.vehiclePose().orientation.conjugate() * Eigen::Vector3d(-dc.impact_normal);
       dc.impact_direction_vehicle = Eigen::Vector3d(horizontal.x(), horizontal.y(), 0);
       if (dc.impact_direction_vehicle.norm() < 1e-6) dc.impact_direction_vehicle = Eigen::Vector3d::UnitX();
-      mt.impact_speed_mps = std::max(0.0, -(velocity_before - velocityOf(other)).dot(dc.impact_normal));
-      mt.energy.kinetic_initial_J = kinetic_before;
-      dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
-      dc.impact_separation_m =
-          dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(other)));
+      mt.impact_speed_mps = std::max(0.0, -dc.impact_relative_velocity_mps.dot(dc.impact_normal));
+      dc.impact_separation_m = dc.impact_normal.dot(dc.impact_com_m - dc.impact_other_m);
     }
   }
 

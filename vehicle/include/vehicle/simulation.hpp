@@ -54,6 +54,10 @@ struct DeformationSettings {
   double compliance_m_per_N = 1e-6;
   /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
   double shell_compliance_ratio = 4.0;
+  /// Share of the vehicle mass carried by the control points in the deformation dynamics [-]: the
+  /// crushable body shell (a body-in-white is about a quarter of a car's kerb mass). The ODE chassis keeps
+  /// the whole mass; the points' mass only sets how the shell moves relative to it. (0, 1].
+  double shell_mass_fraction = 1.0;
   /// Viscous damping of the control points' motion relative to the chassis [1/s].
   double damping = 20.0;
   /// Coulomb friction of control points sliding on what they hit [-].
