@@ -534,6 +534,10 @@ CrashMetrics Simulation::metrics(CarId car) const {
     if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;
   const std::vector<double> crush =
       crushProfile(dc.mesh, dc.body->state().positions_m, dc.impact_direction_vehicle, rest[lead].z());
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    out.max_dent_m =
+        std::max(out.max_dent_m,
+                 -(dc.body->state().positions_m[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
   if (!crush.empty()) {
     double sum = 0;
     for (double c : crush) {

@@ -104,6 +104,9 @@ struct CrashMetrics {
   /// largest [m] (of the control surface, from the rest shape to the shape now).
   double residual_crush_m = 0;
   double max_residual_crush_m = 0;
+  /// Deepest dent: the largest displacement of a control point against the impact direction now [m]
+  /// (a pole's narrow dent can fall between the six stations).
+  double max_dent_m = 0;
   /// Largest displacement of the car into what it hit since first contact (the dynamic crush) [m].
   double max_dynamic_crush_m = 0;
   EnergyTerms energy;
