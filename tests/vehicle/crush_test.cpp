@@ -102,7 +102,8 @@ TEST_CASE("Crush: 56 km/h full-width rigid barrier as in NCAP / FMVSS 208", "[cr
   CHECK(e.plastic_work_J <= e.crush_work_J);
   CHECK(e.dissipated_J >= 0);
   CHECK(e.kinetic_final_J < 0.03 * e.kinetic_initial_J);
-  CHECK(e.kinetic_initial_J == Approx(e.plastic_work_J + e.dissipated_J + e.kinetic_final_J).epsilon(0.01));
+  // The balance, every term measured on its own: within a few per cent.
+  CHECK(std::abs(e.balance_error_J) < 0.03 * e.kinetic_initial_J);
 }
 
 TEST_CASE("Crush grows with impact speed; no permanent dent at 4 km/h", "[crush]") {
@@ -117,7 +118,8 @@ TEST_CASE("Crush grows with impact speed; no permanent dent at 4 km/h", "[crush]
     INFO(kmh << " km/h: crush " << m.residual_crush_m << " m (previous " << previous << " m)");
     checkSane(m);
     CHECK(m.residual_crush_m >= previous);
-    CHECK(m.energy.dissipated_J >= -0.01 * m.energy.kinetic_initial_J);
+    CHECK(m.energy.plastic_work_J <= m.energy.crush_work_J + 1e-6);
+    CHECK(std::abs(m.energy.balance_error_J) < 0.05 * m.energy.kinetic_initial_J);
     previous = m.residual_crush_m;
   }
   CHECK(previous > 0.6);  // 100 km/h: most of the stroke used up

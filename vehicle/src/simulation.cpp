@@ -115,6 +115,8 @@ struct DeformableCar {
   /// Energy the body took in (plastic work, change of its elastic and kinetic energy) that the crush
   /// force has not yet taken from the chassis [J].
   double energy_debt_J = 0;
+  double step_crush_work_J = 0;  ///< work the crush force took from the chassis this step [J]
+  double step_other_work_J = 0;  ///< work every other force took from it this step [J]
 };
 
 struct Simulation::Impl {
@@ -227,7 +229,7 @@ void Simulation::step() {
   Impl& m = *impl_;
   const auto t0 = Clock::now();
   // The crush forces found last step act during this one (on the car, and their reaction on free bodies).
-  std::vector<Eigen::Vector3d> velocity_before;
+  std::vector<Eigen::Vector3d> velocity_before, omega_before;
   std::vector<double> kinetic_before;
   m.car_velocity_before.clear();
   for (CarId c = 0; c < m.world.carCount(); ++c)
@@ -235,6 +237,7 @@ void Simulation::step() {
   for (auto& dc : m.cars) {
     const Car& car = m.world.car(dc->id);
     velocity_before.push_back(car.velocity_mps());
+    omega_before.push_back(car.angularVelocity_rad_s());
     kinetic_before.push_back(kineticEnergy(car));
     if (!dc->force_pending) continue;
     m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->force_N, dc->force_point_m);
@@ -248,15 +251,39 @@ void Simulation::step() {
   m.world.step();
   const auto t1 = Clock::now();
   for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
+  const double dt = m.world.fixedDt_s();
   for (std::size_t i = 0; i < m.cars.size(); ++i) {
     DeformableCar& dc = *m.cars[i];
-    // Work of the crush force over the step: F . v at the midpoint of the step [J].
+    const Car& car = m.world.car(dc.id);
+    // Work of every force on the chassis over the step, at the midpoint velocities of the points they act
+    // at [J]: the crush force, and (for the energy balance) tyres and suspension, ODE contacts, drag and
+    // gravity.
+    const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + car.velocity_mps());
+    const Eigen::Vector3d w_mid = 0.5 * (omega_before[i] + car.angularVelocity_rad_s());
+    const Eigen::Vector3d com = car.bodyPose().position_m;
+    auto pointVelocity = [&](const Eigen::Vector3d& p) {
+      return Eigen::Vector3d(v_mid + w_mid.cross(p - com));
+    };
+    dc.step_crush_work_J = 0;
     if (dc.force_pending) {
-      const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + m.world.car(dc.id).velocity_mps());
-      const double work_J = -(dc.force_N + dc.extra_force_N).dot(v_mid) * m.world.fixedDt_s();
-      dc.metrics.energy.crush_work_J += work_J;
-      dc.energy_debt_J = std::max(0.0, dc.energy_debt_J - work_J);
+      dc.step_crush_work_J =
+          -(dc.force_N.dot(pointVelocity(dc.force_point_m)) + dc.extra_force_N.dot(v_mid)) * dt;
+      dc.energy_debt_J = std::max(0.0, dc.energy_debt_J - dc.step_crush_work_J);
     }
+    double taken_J = 0;  // by everything else
+    for (const WheelState& w : car.wheels())
+      if (w.in_contact) taken_J -= w.force_N.dot(pointVelocity(w.contact_point_m)) * dt;
+    const EntityRef self{EntityRef::Kind::Car, dc.id};
+    for (const ContactPoint& c : m.world.contacts()) {
+      if (!(c.a == self) && !(c.b == self)) continue;
+      const Eigen::Vector3d force = c.a == self ? c.force_on_a_N : Eigen::Vector3d(-c.force_on_a_N);
+      taken_J -= force.dot(pointVelocity(c.position_m)) * dt;
+    }
+    const VehicleSettings& vs = car.settings();
+    const Eigen::Vector3d drag =
+        -0.5 * vs.air_density_kg_m3 * vs.drag_area_m2 * velocity_before[i].norm() * velocity_before[i];
+    taken_J -= (drag + car.mass_kg() * m.world.settings().gravity_mps2).dot(v_mid) * dt;
+    dc.step_other_work_J = taken_J;
     m.stepCar(dc);
     m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
   }
@@ -484,10 +511,13 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   if (separation < 0) mt.tunnelled = true;
 
   EnergyTerms& e = mt.energy;
+  e.crush_work_J += dc.step_crush_work_J;
+  e.other_work_J += dc.step_other_work_J;
   e.plastic_work_J = s.plastic_work_J - dc.plastic_at_impact_J;
   e.kinetic_final_J = kineticEnergy(car);
-  e.dissipated_J = e.kinetic_initial_J - e.plastic_work_J - e.kinetic_final_J;
+  e.dissipated_J = e.crush_work_J - e.plastic_work_J + e.other_work_J;
   e.body_energy_J = deform::bodyEnergy(*dc.body_settings, s).total_J();
+  e.balance_error_J = e.kinetic_initial_J - e.plastic_work_J - e.dissipated_J - e.kinetic_final_J;
 }
 
 std::size_t Simulation::deformableCount() const {

@@ -76,19 +76,25 @@ struct DeformationSettings {
 /// Throws deform::InputError naming the member ("vehicle.deformation.<member>") for a value out of range.
 void checkDeformationSettings(const DeformationSettings& settings);
 
-/// Energy of a run since the car's first impact [J].
+/// Energy of a run since the car's first impact [J]. Every term is measured on its own (the works as
+/// sums of force . point velocity over the steps), so balance_error_J = KE_initial - plastic - dissipated
+/// - KE_final checks the accounting.
 struct EnergyTerms {
   double kinetic_initial_J = 0;  ///< the chassis's kinetic energy (translation + rotation) at impact [J]
   double plastic_work_J = 0;     ///< plastic work done in the body since impact (deform) [J]
-  /// Everything else the car lost: KE_initial - plastic - KE_final (the body's damping and stored
-  /// elastic energy, tyres, ODE's rigid contacts, drag). Reported as the remainder [J].
+  /// Everything else the chassis lost: the crush work the body did not turn into plastic work (its
+  /// damping, the stopping of its point masses at the obstacle, the elastic energy it still holds) plus
+  /// other_work_J [J].
   double dissipated_J = 0;
   double kinetic_final_J = 0;  ///< the chassis's kinetic energy now [J]
-  /// Independent checks: the work the crush force took from the chassis [J] and the elastic plus
-  /// kinetic energy still held in the body relative to the chassis [J]. In Crush, plastic work cannot
-  /// exceed crush_work_J (energy is not created inside the body).
+  /// Work the crush force took from the chassis [J]. In Crush, plastic work cannot exceed it (energy is
+  /// not created inside the body).
   double crush_work_J = 0;
-  double body_energy_J = 0;
+  /// Work taken from the chassis by every other force: tyres and suspension, ODE's rigid contacts (the
+  /// backstop, the ground), drag, gravity (raising the car) [J].
+  double other_work_J = 0;
+  double body_energy_J = 0;  ///< elastic plus kinetic energy held in the body relative to the chassis now [J]
+  double balance_error_J = 0;  ///< KE_initial - plastic - dissipated - KE_final: integration error [J]
 };
 
 /// What a run did to one car (all since its first impact; zeros before it).
