@@ -293,12 +293,17 @@ void Renderer::render(const Camera& camera, const Environment& environment) {
   gl::DepthFunc(GL_LESS);
   gl::FrontFace(GL_CCW);
 
-  // 1. Sun shadow map, fitted to what casts shadows (nothing to do without meshes).
-  const Eigen::AlignedBox3f casters = visibleBounds();
+  // 1. Sun shadow map, fitted to what casts shadows near where the camera looks: a long wall or a
+  //    second car far away must not spread the map's texels over the whole scene. The region and the
+  //    penumbra scale with the viewing distance, so the shadows look alike for a can and for a car.
+  const float view_distance = std::max((camera.target_m - camera.eye_m).norm(), 1e-4f);
+  const Eigen::Vector3f reach = Eigen::Vector3f::Constant(settings_.shadow_reach * view_distance);
+  const Eigen::AlignedBox3f casters =
+      visibleBounds().intersection(Eigen::AlignedBox3f(camera.target_m - reach, camera.target_m + reach));
   const bool shadows = environment.shadows && !casters.isEmpty() && sun.z() > 0.0f;
   SunShadow shadow;
   if (shadows) {
-    const float penumbra = settings_.penumbra_fraction * casters.diagonal().norm();
+    const float penumbra = settings_.penumbra_fraction * view_distance;
     const float floor = ground.visible ? std::min(ground.height_m, casters.min().z()) : casters.min().z();
     shadow = fitSunShadow(casters, floor, sun, penumbra, settings_.shadow_map_size);
     renderShadowMap(shadow);

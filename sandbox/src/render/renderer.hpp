@@ -19,7 +19,8 @@ struct RenderSettings {
   int height = 720;            ///< picture height [px]
   int samples = 4;             ///< MSAA samples per pixel (0 or 1: none); lowered to what the driver has
   int shadow_map_size = 2048;  ///< shadow map side [texels]
-  float penumbra_fraction = 0.012f;  ///< shadow blur radius as a fraction of the casters' diagonal
+  float penumbra_fraction = 0.0065f;  ///< shadow blur radius [m] per metre from the camera to its target
+  float shadow_reach = 2.5f;  ///< shadows are cast by what lies within this many view distances of the target
 };
 
 class Renderer {
