@@ -13,48 +13,52 @@
 namespace deform {
 namespace {
 
-bool fromDistance(const Eigen::Vector3d& away, double radius_m, Penetration& out) {
+// Each query: true when the point is closer than `margin` to the obstacle's surface or inside it; then
+// `out.depth_m` is the depth (negative outside: minus the distance to the surface).
+bool fromDistance(const Eigen::Vector3d& away, double radius_m, double margin, Penetration& out) {
   const double distance = away.norm();
-  if (!(distance < radius_m)) return false;
+  if (!(distance < radius_m + margin)) return false;
   out.normal = distance > 0 ? Eigen::Vector3d(away / distance) : Eigen::Vector3d::UnitZ();
   out.depth_m = radius_m - distance;
   return true;
 }
 
-bool inside(const HalfSpaceShape& s, const Eigen::Vector3d& x, Penetration& out) {
+bool inside(const HalfSpaceShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
   const double length = s.normal.norm();
   const double signed_distance = (s.normal.dot(x) - s.offset_m) / length;
-  if (!(signed_distance < 0)) return false;
+  if (!(signed_distance < margin)) return false;
   out.normal = s.normal / length;
   out.depth_m = -signed_distance;
   return true;
 }
 
-bool inside(const SphereShape& s, const Eigen::Vector3d& x, Penetration& out) {
-  return fromDistance(x - s.centre_m, s.radius_m, out);
+bool inside(const SphereShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
+  return fromDistance(x - s.centre_m, s.radius_m, margin, out);
 }
 
-bool inside(const BoxShape& s, const Eigen::Vector3d& x, Penetration& out) {
+bool inside(const BoxShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
   const Eigen::Vector3d local = s.axes.transpose() * (x - s.centre_m);
   const Eigen::Vector3d room = s.half_extents_m - local.cwiseAbs();  // distance to each face pair
-  if (!(room.minCoeff() > 0)) return false;
   Eigen::Index axis = 0;
-  room.minCoeff(&axis);  // the nearest face
-  out.depth_m = room[axis];
+  const double least = room.minCoeff(&axis);  // inside: the nearest face; outside: the face it is beyond
+  if (!(least > -margin)) return false;
+  out.depth_m = least;  // outside near an edge this overestimates the distance: harmless within a margin
   out.normal = s.axes.col(axis) * (local[axis] < 0 ? -1.0 : 1.0);
   return true;
 }
 
-bool inside(const CapsuleShape& s, const Eigen::Vector3d& x, Penetration& out) {
+bool inside(const CapsuleShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
   const Eigen::Vector3d ab = s.b_m - s.a_m;
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0 ? std::clamp((x - s.a_m).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return fromDistance(x - (s.a_m + t * ab), s.radius_m, out);
+  return fromDistance(x - (s.a_m + t * ab), s.radius_m, margin, out);
 }
 
-// libccd glue: the obstacle is object 1, the control point (a single point) is object 2.
+// libccd glue: the obstacle is object 1, the control point inflated to a ball of radius `margin` (a
+// point when 0) is object 2.
 struct PointObject {
   Eigen::Vector3d point;
+  double radius;
 };
 
 void toCcd(const Eigen::Vector3d& v, ccd_vec3_t* out) {
@@ -68,16 +72,19 @@ void supportOfShape(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) 
 void centreOfShape(const void* object, ccd_vec3_t* out) {
   toCcd(static_cast<const ConvexSupportShape*>(object)->centre_m, out);
 }
-void supportOfPoint(const void* object, const ccd_vec3_t*, ccd_vec3_t* out) {
-  toCcd(static_cast<const PointObject*>(object)->point, out);
+void supportOfPoint(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+  const auto* ball = static_cast<const PointObject*>(object);
+  const Eigen::Vector3d d(ccdVec3X(dir), ccdVec3Y(dir), ccdVec3Z(dir));
+  const double length = d.norm();
+  toCcd(length > 0 ? Eigen::Vector3d(ball->point + d * (ball->radius / length)) : ball->point, out);
 }
 void centreOfPoint(const void* object, ccd_vec3_t* out) {
   toCcd(static_cast<const PointObject*>(object)->point, out);
 }
 
-bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, Penetration& out) {
-  if ((x - s.centre_m).squaredNorm() > s.bounding_radius_m * s.bounding_radius_m)
-    return false;  // broad phase
+bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
+  const double reach = s.bounding_radius_m + margin;
+  if ((x - s.centre_m).squaredNorm() > reach * reach) return false;  // broad phase
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = supportOfShape;
@@ -86,7 +93,7 @@ bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, Penetration& 
   ccd.center2 = centreOfPoint;
   ccd.max_iterations = 100;
   ccd.mpr_tolerance = 1e-9;
-  const PointObject point{x};
+  const PointObject point{x, margin};
   ccd_real_t depth = 0;
   ccd_vec3_t dir, pos;
   // "Computes penetration of obj2 into obj1": translating obj2 by depth along dir separates them.
@@ -94,7 +101,7 @@ bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, Penetration& 
   const Eigen::Vector3d normal(ccdVec3X(&dir), ccdVec3Y(&dir), ccdVec3Z(&dir));
   if (!(depth > 0) || !std::isfinite(depth) || !normal.allFinite() || normal.squaredNorm() == 0) return false;
   out.normal = normal.normalized();
-  out.depth_m = depth;
+  out.depth_m = depth - margin;  // the ball's penetration less its radius: the point's
   return true;
 }
 
@@ -108,8 +115,9 @@ void requireNonNegative(double value, const std::string& field) {
 
 }  // namespace
 
-bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out) {
-  return std::visit([&](const auto& s) { return inside(s, point_m, out); }, shape);
+bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
+                 double margin_m) {
+  return std::visit([&](const auto& s) { return inside(s, point_m, margin_m, out); }, shape);
 }
 
 ConvexPoints::ConvexPoints(std::vector<Eigen::Vector3d> points_m) : points_m_(std::move(points_m)) {

@@ -114,13 +114,21 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   return report;
 }
 
-void DeformableBody::findContacts(const StepInputs& inputs) {
+uint32_t DeformableBody::findContacts(const StepInputs& inputs) {
+  // Points inside an obstacle or within the margin of it: a point resting on a surface at the start of
+  // the substep stays held by its (inactive until violated) contact instead of sinking in for a substep
+  // and being thrown out the next, a jitter.
   contacts_.clear();
   const auto& x = state_.positions_m;
   Penetration p;
+  uint32_t inside = 0;
   for (const ContactShape& shape : inputs.contacts)
     for (uint32_t i = 0; i < x.size(); ++i)
-      if (penetration(shape, x[i], p)) contacts_.push_back({i, p.normal, x[i] + p.depth_m * p.normal});
+      if (penetration(shape, x[i], p, params_.contact_margin_m)) {
+        contacts_.push_back({i, p.normal, x[i] + p.depth_m * p.normal});
+        inside += p.depth_m > 0;
+      }
+  return inside;
 }
 
 void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& report) {
@@ -156,8 +164,7 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
     x[i] += travel;
   }
 
-  findContacts(inputs);
-  report.contact_points += static_cast<uint32_t>(contacts_.size());
+  report.contact_points += findContacts(inputs);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
   std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);

@@ -35,6 +35,7 @@ void checkSolverParams(const SolverParams& params) {
   if (params.iterations < 1) throw InputError("iterations: must be at least 1 (got 0)");
   requireNonNegative(params.damping_per_s, "damping_per_s");
   requireNonNegative(params.inertial_scale, "inertial_scale");
+  requireNonNegative(params.contact_margin_m, "contact_margin_m");
   requireNonNegative(params.sleep_speed_mps, "sleep_speed_mps");
   requireNonNegative(params.wake_load_mps2, "wake_load_mps2");
   if (std::isnan(params.sleep_delay_s)) throw InputError("sleep_delay_s: must not be NaN");

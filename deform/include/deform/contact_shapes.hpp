@@ -48,12 +48,15 @@ using ContactShape = std::variant<HalfSpaceShape, SphereShape, BoxShape, Capsule
 /// How to push a point out of an obstacle: move it by depth_m along normal.
 struct Penetration {
   Eigen::Vector3d normal{0, 0, 1};  ///< unit direction out of the obstacle
-  double depth_m = 0;               ///< [m], > 0 when inside
+  double depth_m = 0;               ///< [m], > 0 when inside, < 0 outside within the query's margin
 };
 
-/// True (and `out` filled) when `point_m` is inside `shape`. Exact for the primitives; MPR
-/// (ccdMPRPenetration) for a support shape.
-bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out);
+/// True (and `out` filled) when `point_m` is inside `shape` or closer than `margin_m` [m] to its surface;
+/// `out.depth_m` is then negative outside (minus the distance). Exact for the primitives (for a box, the
+/// distance outside near an edge is that to the nearest face's plane); MPR (ccdMPRPenetration) for a
+/// support shape, with the point inflated to a ball of radius margin_m.
+bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
+                 double margin_m = 0);
 
 /// The convex hull of a point set (e.g. a jersey barrier's vertices) as a support shape. Owns its
 /// points; the shapes it hands out refer to it, so it must outlive them.

@@ -55,7 +55,8 @@ class DeformableBody {
 
  private:
   void substep(double h, const StepInputs& inputs, StepReport& report);
-  void findContacts(const StepInputs& inputs);
+  /// Fills contacts_; returns how many points are inside an obstacle.
+  uint32_t findContacts(const StepInputs& inputs);
   void plasticity(StepReport& report);
   bool loadChanged() const;
 

@@ -18,6 +18,9 @@ struct SolverParams {
   /// Scale of the inertial (fictitious) forces from the chassis's motion and of gravity (the paper's
   /// secondary motion) [1]; 0 disables them. >= 0.
   double inertial_scale = 1.0;
+  /// Points closer than this to an obstacle [m] get a contact constraint for the substep (inactive until
+  /// violated), so a point resting on a surface stays there instead of jittering in and out. >= 0.
+  double contact_margin_m = 0.01;
   /// Sleep: when no contact acts and every control point is slower than this [m/s] ...
   double sleep_speed_mps = 0.005;
   /// ... for this long [s], steps do no work until a contact, an impulse or a change of the inertial load

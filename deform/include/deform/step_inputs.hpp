@@ -27,7 +27,9 @@ struct ChassisMotion {
 struct StepInputs {
   std::vector<ContactShape> contacts;  ///< obstacles this step (immovable)
   /// Coulomb friction coefficient between the control points and every obstacle [1]; 0 = frictionless.
-  double contact_friction = 0.5;
+  /// Off by default: on fine control meshes (thousands of points) pressed against a wall, position-level
+  /// friction with one Gauss-Seidel iteration was seen to jitter (an open issue).
+  double contact_friction = 0.0;
   std::vector<PointImpulse> impulses;  ///< point impulses
   ChassisMotion chassis;               ///< for inertial forces
 };
