@@ -197,9 +197,15 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
       deform::distributeMass(dc->mesh, car.mass_kg * deformation.shell_mass_fraction);
   deform::BodyDescription description;
   deform::Material& m = description.material;
-  m.spoke_compliance_m_per_N = deformation.compliance_m_per_N;
-  m.edge_compliance_m_per_N = deformation.compliance_m_per_N * deformation.shell_compliance_ratio;
-  m.bend_compliance_m_per_N = deformation.compliance_m_per_N * deformation.shell_compliance_ratio;
+  // The compliance is given for the reference level of detail. At a fixed compliance the measured crush
+  // force grows as N^0.46 with the control points N (more spokes meet the obstacle), so it is scaled by
+  // sqrt(N / N_ref) to keep the crush force independent of the level of detail.
+  const double per_point =
+      deformation.compliance_m_per_N *
+      std::sqrt(static_cast<double>(dc->mesh.points_m.size()) / static_cast<double>(kReferenceControlPoints));
+  m.spoke_compliance_m_per_N = per_point;
+  m.edge_compliance_m_per_N = per_point * deformation.shell_compliance_ratio;
+  m.bend_compliance_m_per_N = per_point * deformation.shell_compliance_ratio;
   m.yield_strain = deformation.yield_strain;
   m.hardening = deformation.hardening;
   description.max_deviation_m = deformation.max_deviation_m;

@@ -35,6 +35,9 @@ enum class Coupling : uint8_t {
   Visual,  ///< the paper: motion unaffected by damage, dent from the contact impulse
 };
 
+/// The level of detail the material compliances are given for [-] (see compliance_m_per_N).
+inline constexpr std::size_t kReferenceControlPoints = 60;
+
 /// Per-car deformation settings (scene keys vehicle.deformation.*). The material defaults are the
 /// calibration of docs/CRASH_CALIBRATION.md (the built-in 1500 kg sedan against 56 km/h full-width
 /// rigid-barrier tests).
@@ -50,7 +53,10 @@ struct DeformationSettings {
   double yield_strain = 0.012;
   /// Linear hardening: plastic over elastic modulus [-] (crush force rising with crush).
   double hardening = 0.0;
-  /// Compliance of the spokes (control point to core): the load path into the chassis [m/N].
+  /// Compliance of the spokes (control point to core), the load path into the chassis, at
+  /// kReferenceControlPoints; with N points every compliance is scaled by sqrt(N / 60), which keeps the
+  /// crush force about independent of the level of detail (measured: at a fixed compliance it grows as
+  /// N^0.46) [m/N].
   double compliance_m_per_N = 1e-6;
   /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
   double shell_compliance_ratio = 4.0;
