@@ -13,5 +13,9 @@ void registerFiguresCommand(CLI::App& app);
 void registerBenchStepCommand(CLI::App& bench);
 /// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.
 void registerMeshRenderCommand(CLI::App& mesh);
+/// `sandbox run` (play a scene: summary, timeline, frames, video), in cmd_run.cpp.
+void registerRunCommand(CLI::App& app);
+/// `sandbox export` (the damaged car at a time as a mesh), in cmd_export.cpp.
+void registerExportCommand(CLI::App& app);
 
 }  // namespace sandbox

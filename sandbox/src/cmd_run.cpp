@@ -1,0 +1,231 @@
+// `sandbox run SCENE`: plays a scene at its fixed physics rate; renders PNG frames and an MP4 at the
+// frame rate when asked; writes DIR/summary.json (the run's figures) and DIR/timeline.csv (a row per
+// frame). Headless runs never embed the render mesh (DESIGN.md section 8).
+#include <scenes/scene_file.hpp>
+#include <scenes/scene_run.hpp>
+
+#include <deform/error.hpp>
+
+#include <unistd.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "render/png_io.hpp"
+#include "render/video_writer.hpp"
+#include "run_command.hpp"
+#include "run_render.hpp"
+
+namespace fs = std::filesystem;
+
+namespace sandbox {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A one-line progress bar on stderr, only on a terminal and only once a run takes more than a moment.
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, bool enabled)
+      : label_(std::move(label)), enabled_(enabled && isatty(STDERR_FILENO) != 0), start_(Clock::now()) {}
+  void update(double fraction, const std::string& detail) {
+    if (!enabled_) return;
+    const double elapsed = secondsSince(start_);
+    if (elapsed < 0.5 || elapsed - last_ < 0.1) return;
+    last_ = elapsed;
+    shown_ = true;
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * kWidth);
+    std::fprintf(stderr, "\r%s [%s%s] %3.0f%% %s  ", label_.c_str(),
+                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), fraction * 100.0,
+                 detail.c_str());
+    std::fflush(stderr);
+  }
+  ~ProgressBar() {
+    if (shown_) std::fprintf(stderr, "\r\033[K");
+  }
+
+ private:
+  std::string label_;
+  bool enabled_;
+  Clock::time_point start_;
+  double last_ = 0;
+  bool shown_ = false;
+};
+
+void applyFlags(const RunOptions& options, scenes::OutputConfig& outputs) {
+  if (options.width && (*options.width < 16 || *options.width > 8192)) {
+    throw deform::InputError("--width: must be in [16, 8192] pixels (got " + std::to_string(*options.width) +
+                             ")");
+  }
+  if (options.height && (*options.height < 16 || *options.height > 8192)) {
+    throw deform::InputError("--height: must be in [16, 8192] pixels (got " +
+                             std::to_string(*options.height) + ")");
+  }
+  if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {
+    throw deform::InputError("--fps: must be in [1, 1000] frames per second");
+  }
+  outputs.frames = outputs.frames || options.frames;
+  outputs.video = outputs.video || options.video;
+  outputs.heatmap = outputs.heatmap || options.heatmap;
+  if (options.width) outputs.width = *options.width;
+  if (options.height) outputs.height = *options.height;
+  if (options.fps) outputs.fps = *options.fps;
+}
+
+fs::path prepareOutput(const std::string& dir, bool frames) {
+  const fs::path out(dir);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) throw deform::InputError("--out: cannot create folder " + dir);
+  // Frames of an earlier run must not pass for this run's.
+  if (fs::is_directory(out / "frames")) {
+    for (const auto& entry : fs::directory_iterator(out / "frames")) {
+      if (entry.path().extension() == ".png") fs::remove(entry.path());
+    }
+  }
+  if (frames) fs::create_directories(out / "frames");
+  return out;
+}
+
+std::vector<scenes::Override> overridesOf(const std::vector<std::string>& sets) {
+  std::vector<scenes::Override> overrides;
+  for (const std::string& s : sets) overrides.push_back(scenes::parseOverride(s));
+  return overrides;
+}
+
+std::string frameName(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%05d.png", frame);
+  return name;
+}
+
+}  // namespace
+
+RunResult runScene(const RunOptions& options) {
+  const auto started = Clock::now();
+  scenes::SceneConfig scene = scenes::loadScene(options.scene, overridesOf(options.sets));
+  applyFlags(options, scene.outputs);
+  const scenes::OutputConfig outputs = scene.outputs;
+  const bool draw = outputs.frames || outputs.video;
+  const fs::path out = prepareOutput(options.out.empty() ? "out/" + scene.name : options.out, outputs.frames);
+
+  scenes::SceneRun run(scene);
+  scenes::StageTimes& times = run.times();
+  std::unique_ptr<RunRenderer> renderer;
+  std::unique_ptr<render::VideoWriter> video;
+  if (draw) renderer = std::make_unique<RunRenderer>(run, outputs, times);
+  if (outputs.video) {
+    video = std::make_unique<render::VideoWriter>(
+        (out / "video.mp4").string(), render::VideoSettings{outputs.width, outputs.height, outputs.fps});
+  }
+
+  // One frame (and timeline row) every playback_speed / fps simulated seconds, from t = 0 to the end.
+  const double frame_dt_s = outputs.playback_speed / outputs.fps;
+  const int frame_count = static_cast<int>(std::floor(scene.duration_s / frame_dt_s + 1e-9)) + 1;
+  std::vector<std::string> columns = run.timelineColumns();
+  for (const char* c : {"physics_ms", "deform_ms", "embed_ms", "render_ms"}) columns.push_back(c);
+  std::vector<std::vector<double>> rows;
+  ProgressBar progress(scene.name, options.progress);
+  RunResult result;
+  scenes::StageTimes before = times;
+  for (int frame = 0; frame < frame_count; ++frame) {
+    run.stepUntil(frame * frame_dt_s);
+    if (renderer) {
+      const render::Image image = renderer->frame(run, times);
+      const auto write_start = Clock::now();
+      if (outputs.frames) {
+        render::writePng((out / "frames" / frameName(frame)).string(), image.width, image.height, image.rgba);
+      }
+      if (video) video->addFrame(image.rgba);
+      times.render_ms += secondsSince(write_start) * 1e3;
+      ++result.frames;
+    }
+    std::vector<double> row = run.timelineValues();
+    row.insert(row.end(), {times.physics_ms - before.physics_ms, times.deform_ms - before.deform_ms,
+                           times.embed_ms - before.embed_ms, times.render_ms - before.render_ms});
+    before = times;
+    rows.push_back(std::move(row));
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "t %.2f/%.2f s, frame %d/%d", run.time_s(), scene.duration_s,
+                  frame + 1, frame_count);
+    progress.update(static_cast<double>(frame + 1) / frame_count, detail);
+  }
+  run.runToEnd();
+  if (video) {
+    const auto finish_start = Clock::now();
+    video->finish();
+    times.render_ms += secondsSince(finish_start) * 1e3;
+    result.video_path = video->path();
+  }
+  times.total_ms = secondsSince(started) * 1e3;
+
+  result.summary = run.summary();
+  result.summary["frames"] = result.frames;
+  result.summary["fps"] = outputs.fps;
+  result.summary["playback_speed"] = outputs.playback_speed;
+  if (!result.video_path.empty()) result.summary["video"] = result.video_path;
+  result.out_dir = out.string();
+  scenes::writeFileAtomically((out / "timeline.csv").string(), scenes::timelineCsv(columns, rows));
+  scenes::writeFileAtomically((out / "summary.json").string(), result.summary.dump(2) + "\n");
+  if (run.diverged()) {
+    throw std::runtime_error(scene.name + ": the run diverged (non-finite or huge values); see " +
+                             (out / "summary.json").string());
+  }
+  return result;
+}
+
+void registerRunCommand(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  auto* run = app.add_subcommand("run", "Play a scene; write summary.json, timeline.csv, frames and video");
+  run->add_option("SCENE", options->scene,
+                  "Scene file, or a shipped scene's name (wall_crash, pole_side, ...)")
+      ->required();
+  run->add_option("--out", options->out, "Output folder (default out/<scene name>)");
+  run->add_flag("--frames", options->frames, "Write PNG frames to DIR/frames/NNNNN.png");
+  run->add_flag("--video", options->video, "Write DIR/video.mp4 (H.264)");
+  run->add_flag("--heatmap", options->heatmap, "Colour the car by its displacement (red most, blue none)");
+  run->add_option("--width", options->width, "Picture width [px] (default the scene's, 1280)");
+  run->add_option("--height", options->height, "Picture height [px] (default the scene's, 720)");
+  run->add_option("--fps", options->fps, "Frames per second (default the scene's)");
+  run->add_option("--set", options->sets,
+                  "Override a scene key: --set vehicle.start.speed_kmh=5 (repeatable)")
+      ->expected(1)
+      ->take_all();
+  run->callback([options] {
+    const RunResult result = runScene(*options);
+    const nlohmann::json& s = result.summary;
+    std::printf("%s: %llu steps, %.3f s simulated in %.1f s; state hash %s\n",
+                s["scene"].get<std::string>().c_str(),
+                static_cast<unsigned long long>(s["steps"].get<uint64_t>()), s["time_s"].get<double>(),
+                s["timing_ms"]["total"].get<double>() / 1e3, s["state_hash"].get<std::string>().c_str());
+    std::printf(
+        "impact %.1f km/h, residual crush %.3f m (max %.3f m), max dynamic crush %.3f m, restitution %.2f\n",
+        s["impact_speed_mps"].get<double>() * 3.6, s["residual_crush_m"].get<double>(),
+        s["max_residual_crush_m"].get<double>(), s["max_dynamic_crush_m"].get<double>(),
+        s["restitution"].get<double>());
+    std::printf("timing: physics %.0f ms, deform %.0f ms, embed %.0f ms, render %.0f ms, total %.0f ms\n",
+                s["timing_ms"]["physics"].get<double>(), s["timing_ms"]["deform"].get<double>(),
+                s["timing_ms"]["embed"].get<double>(), s["timing_ms"]["render"].get<double>(),
+                s["timing_ms"]["total"].get<double>());
+    std::printf("wrote %s/summary.json, %s/timeline.csv", result.out_dir.c_str(), result.out_dir.c_str());
+    if (s.contains("frames") && result.frames > 0 && fs::is_directory(fs::path(result.out_dir) / "frames") &&
+        !fs::is_empty(fs::path(result.out_dir) / "frames")) {
+      std::printf(", %d frames in %s/frames", result.frames, result.out_dir.c_str());
+    }
+    if (!result.video_path.empty()) std::printf(", video %s", result.video_path.c_str());
+    std::printf("\n");
+  });
+}
+
+}  // namespace sandbox

@@ -1,0 +1,199 @@
+// Drawing a scene run: cars (skinned body, wheels on their hubs), obstacles, camera, heat map.
+#include "run_render.hpp"
+
+#include <deform/control_mesh.hpp>
+#include <deform/heat_colours.hpp>
+
+#include <vehicle/obstacle_shape.hpp>
+
+#include <chrono>
+#include <cmath>
+
+#include "render/vehicle_meshes.hpp"
+
+namespace sandbox {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+Eigen::Matrix4f matrixOf(const vehicle::Pose& pose) {
+  return pose.isometry().matrix().cast<float>();
+}
+
+// A convex point set as flat-shaded triangles (each triangle its own corners and face normal).
+deform::Mesh flatHull(const std::vector<Eigen::Vector3d>& points) {
+  const deform::ControlMesh hull = deform::convexHull(points, "obstacle", deform::FacetSplit::Diagonals);
+  deform::Mesh mesh;
+  for (const auto& t : hull.triangles) {
+    const Eigen::Vector3d a = hull.points_m[t[0]], b = hull.points_m[t[1]], c = hull.points_m[t[2]];
+    const Eigen::Vector3f n = (b - a).cross(c - a).normalized().cast<float>();
+    const auto base = static_cast<uint32_t>(mesh.positions_m.size());
+    for (const Eigen::Vector3d& p : {a, b, c}) {
+      mesh.positions_m.push_back(p.cast<float>());
+      mesh.normals.push_back(n);
+    }
+    mesh.triangles.push_back({base, base + 1, base + 2});
+  }
+  return mesh;
+}
+
+// The obstacle's surface in its own frame (where obstaclePose places it); empty for the ground.
+deform::Mesh obstacleLocalMesh(const vehicle::World& world, vehicle::ObstacleId id) {
+  const vehicle::ObstacleShape shape =
+      vehicle::transformShape(world.obstacleShape(id), world.obstaclePose(id));
+  switch (shape.type) {
+    case vehicle::ShapeType::Box: {
+      std::vector<Eigen::Vector3d> corners;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d sign((c & 1) ? 1 : -1, (c & 2) ? 1 : -1, (c & 4) ? 1 : -1);
+        corners.push_back(shape.centre_m + shape.axes * sign.cwiseProduct(shape.half_extents_m));
+      }
+      return flatHull(corners);
+    }
+    case vehicle::ShapeType::Convex:
+      return flatHull(shape.vertices_m);
+    case vehicle::ShapeType::Cylinder:
+    case vehicle::ShapeType::Capsule: {
+      const Eigen::Vector3d axis = shape.b_m - shape.a_m;
+      const double length = axis.norm();
+      deform::Mesh mesh = deform::makeWheelMesh(shape.radius_m, length, 24);  // around Y
+      const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis);
+      const Eigen::Vector3d middle = 0.5 * (shape.a_m + shape.b_m);
+      for (Eigen::Vector3f& p : mesh.positions_m) p = (turn * p.cast<double>() + middle).cast<float>();
+      mesh.normals.clear();
+      deform::computeVertexNormals(mesh);
+      return mesh;
+    }
+    default:
+      return {};
+  }
+}
+
+}  // namespace
+
+render::Camera sceneCamera(const scenes::SceneRun& run) {
+  const scenes::CameraConfig& c = run.scene().camera;
+  const vehicle::Car& car = run.simulation().world().car(run.carId(c.follow));
+  render::Camera camera;
+  switch (c.mode) {
+    case scenes::CameraMode::Chase:
+      camera = render::chaseCamera(car.vehiclePose().isometry(), c.distance_m, c.height_m);
+      break;
+    case scenes::CameraMode::Side:
+      camera = render::sideCamera(c.eye_m, car.bodyPose().position_m);
+      break;
+    case scenes::CameraMode::Fixed:
+      camera = render::sideCamera(c.eye_m, c.target_m);
+      break;
+  }
+  camera.fov_y_deg = static_cast<float>(c.fov_deg);
+  const float distance = (camera.target_m - camera.eye_m).norm();
+  camera.near_m = std::max(1e-3f, std::min(0.1f, distance * 0.05f));
+  return camera;
+}
+
+render::Environment sceneEnvironment(const scenes::SceneRun& run) {
+  const deform::Aabb box = render::vehicleBounds(run.model(0));
+  const double diagonal = box.diagonal_m();
+  render::Environment environment;
+  environment.ground.visible = run.scene().ground;
+  environment.ground.height_m = 0.0f;
+  environment.ground.centre_m = run.scene().vehicles[0].start.position_m.head<2>().cast<float>();
+  environment.ground.radius_m = static_cast<float>(std::max(diagonal, 1e-3) * 30.0);
+  environment.ground.grid_spacing_m = render::gridSpacingFor(diagonal);
+  return environment;
+}
+
+RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig& outputs,
+                         scenes::StageTimes& times)
+    : heatmap_(outputs.heatmap) {
+  auto start = Clock::now();
+  const vehicle::Simulation& simulation = run.simulation();
+  for (std::size_t i = 0; i < run.carCount(); ++i) {
+    CarMeshes car;
+    const vehicle::CarId id = run.carId(i);
+    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, simulation.controlRestPoints(id),
+                                                 simulation.deformationSettings(id));
+    const double diagonal = deform::boundingBox(run.model(i).body).diagonal_m();
+    car.full_scale_m =
+        static_cast<float>(outputs.heatmap_full_scale_m > 0 ? outputs.heatmap_full_scale_m : 0.06 * diagonal);
+    cars_.push_back(std::move(car));
+  }
+  times.embed_ms += msSince(start);
+
+  start = Clock::now();
+  renderer_ = std::make_unique<render::Renderer>(
+      render::RenderSettings{outputs.width, outputs.height, outputs.samples});
+  for (std::size_t i = 0; i < run.carCount(); ++i) {
+    std::vector<render::MeshData> meshes =
+        render::vehicleMeshes(run.model(i), run.scene().vehicles[i].colour);
+    cars_[i].body = renderer_->addMesh(meshes[0]);
+    if (heatmap_)
+      renderer_->setColours(
+          cars_[i].body, std::vector<Eigen::Vector3f>(meshes[0].positions_m.size(), deform::heatColour(0)));
+    for (std::size_t w = 1; w < meshes.size(); ++w) cars_[i].wheels.push_back(renderer_->addMesh(meshes[w]));
+  }
+  const vehicle::World& world = simulation.world();
+  for (std::size_t i = 0; i < run.scene().obstacles.size(); ++i) {
+    const vehicle::ObstacleId id = run.obstacleId(i);
+    const deform::Mesh local = obstacleLocalMesh(world, id);
+    if (local.triangles.empty()) continue;
+    render::MeshData data = render::meshData(local, run.scene().obstacles[i].colour);
+    data.specular = 0.1f;
+    data.shininess = 20.0f;
+    obstacles_.push_back({renderer_->addMesh(data), id});
+  }
+  environment_ = sceneEnvironment(run);
+  times.render_ms += msSince(start);
+}
+
+RunRenderer::~RunRenderer() = default;
+
+render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes& times) {
+  const vehicle::Simulation& simulation = run.simulation();
+  const vehicle::World& world = simulation.world();
+  auto start = Clock::now();
+  std::vector<bool> changed(cars_.size(), false);
+  for (std::size_t i = 0; i < cars_.size(); ++i) {
+    changed[i] = cars_[i].skin->update(simulation.controlDisplacements(run.carId(i))) > 0;
+  }
+  times.embed_ms += msSince(start);
+
+  start = Clock::now();
+  for (std::size_t i = 0; i < cars_.size(); ++i) {
+    CarMeshes& car = cars_[i];
+    const vehicle::Car& chassis = world.car(run.carId(i));
+    if (changed[i]) {
+      const deform::Mesh& mesh = car.skin->mesh();
+      renderer_->updatePositions(car.body, mesh.positions_m, mesh.normals);
+      if (heatmap_) {
+        renderer_->setColours(car.body, deform::displacementColours(car.skin->restPositions(),
+                                                                    mesh.positions_m, car.full_scale_m));
+      }
+    }
+    renderer_->setTransform(car.body, matrixOf(chassis.vehiclePose()));
+    for (std::size_t w = 0; w < car.wheels.size() && w < chassis.wheels().size(); ++w) {
+      renderer_->setTransform(car.wheels[w], matrixOf(chassis.wheelPose(w)));
+    }
+  }
+  for (const ObstacleMesh& o : obstacles_)
+    renderer_->setTransform(o.mesh, matrixOf(world.obstaclePose(o.id)));
+  render::Image image = renderer_->renderImage(sceneCamera(run), environment_);
+  times.render_ms += msSince(start);
+  return image;
+}
+
+deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car) {
+  const vehicle::Simulation& simulation = run.simulation();
+  const vehicle::CarId id = run.carId(car);
+  scenes::CarSkin skin(run.model(car).body, simulation.controlRestPoints(id),
+                       simulation.deformationSettings(id));
+  skin.update(simulation.controlDisplacements(id));
+  return skin.mesh();
+}
+
+}  // namespace sandbox

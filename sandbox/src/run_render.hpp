@@ -1,0 +1,55 @@
+#pragma once
+// Drawing a scene run: every car (its body following the control points through the skin, coloured by
+// displacement for the heat map; its wheels turning, steering and riding the suspension), the
+// obstacles where the world has them now, from the scene's camera.
+#include <scenes/car_skin.hpp>
+#include <scenes/scene_run.hpp>
+
+#include <memory>
+#include <vector>
+
+#include "render/renderer.hpp"
+
+namespace sandbox {
+
+/// The scene's camera for the world as it is now (chase, side or fixed; scenes/README.md).
+render::Camera sceneCamera(const scenes::SceneRun& run);
+
+/// Ground, lights and sky for the scene: the ground plane at z = 0 around the first car's start, its
+/// grid and fade scaled to the car (a drinks can gets a centimetre grid).
+render::Environment sceneEnvironment(const scenes::SceneRun& run);
+
+class RunRenderer {
+ public:
+  /// Builds the renderer, the skins (timed as embed) and the meshes of cars and obstacles.
+  RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig& outputs, scenes::StageTimes& times);
+  ~RunRenderer();
+
+  /// Embeds the render meshes for the control points now (embed time) and draws the frame (render time).
+  render::Image frame(const scenes::SceneRun& run, scenes::StageTimes& times);
+
+  /// The car's skinned body (vehicle frame) as of the last frame.
+  const scenes::CarSkin& skin(std::size_t car) const { return *cars_[car].skin; }
+
+ private:
+  struct CarMeshes {
+    render::Renderer::MeshId body = 0;
+    std::vector<render::Renderer::MeshId> wheels;
+    std::unique_ptr<scenes::CarSkin> skin;
+    float full_scale_m = 0.25f;
+  };
+  struct ObstacleMesh {
+    render::Renderer::MeshId mesh = 0;
+    vehicle::ObstacleId id = 0;
+  };
+  std::unique_ptr<render::Renderer> renderer_;
+  std::vector<CarMeshes> cars_;
+  std::vector<ObstacleMesh> obstacles_;
+  render::Environment environment_;
+  bool heatmap_ = false;
+};
+
+/// The car's body deformed as it is now (vehicle frame), without rendering: for `sandbox export`.
+deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car);
+
+}  // namespace sandbox

@@ -1,0 +1,192 @@
+// `sandbox run` and `sandbox export` end to end: headless runs never embed and are deterministic; a
+// rendered wall crash shows the car where the camera puts it, its heat map red at the crushed front and
+// blue at the rear; the video decodes with one frame per timeline row; the exported mesh reads back.
+#include <catch2/catch.hpp>
+
+#include <scenes/scene_file.hpp>
+#include <scenes/scene_run.hpp>
+
+#include <deform/heat_colours.hpp>
+#include <deform/mesh_import.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render/video_writer.hpp"
+#include "run_command.hpp"
+#include "run_render.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::size_t lineCount(const fs::path& path) {
+  std::ifstream in(path);
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  return lines;
+}
+
+}  // namespace
+
+TEST_CASE("headless runs never embed, write the named figures and repeat bit for bit", "[run]") {
+  const fs::path dir = freshDir("sandbox_run_headless");
+  sandbox::RunOptions options;
+  options.scene = "wall_crash";
+  options.progress = false;
+  options.out = (dir / "a").string();
+  const sandbox::RunResult a = sandbox::runScene(options);
+  options.out = (dir / "b").string();
+  const sandbox::RunResult b = sandbox::runScene(options);
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir / "a" / "summary.json"));
+  for (const char* key : {"impact_speed_mps", "rebound_speed_mps", "restitution", "residual_crush_m",
+                          "max_residual_crush_m", "max_dynamic_crush_m", "energy", "max_deviation_m",
+                          "max_penetration_m", "tunnelled", "diverged", "state_hash", "steps", "timing_ms"}) {
+    INFO(key);
+    CHECK(summary.contains(key));
+  }
+  for (const char* key : {"kinetic_initial_J", "plastic_work_J", "dissipated_J", "kinetic_final_J"}) {
+    CHECK(summary["energy"].contains(key));
+  }
+  for (const char* stage : {"physics", "deform", "embed", "render", "total"}) {
+    CHECK(summary["timing_ms"].contains(stage));
+  }
+  CHECK(summary["timing_ms"]["embed"].get<double>() == 0);
+  CHECK(summary["timing_ms"]["render"].get<double>() == 0);
+  CHECK(summary["steps"].get<uint64_t>() == 800);
+  CHECK_FALSE(fs::exists(dir / "a" / "frames"));
+  CHECK_FALSE(fs::exists(dir / "a" / "video.mp4"));
+  // One timeline row per frame: 1.6 s at 24 frames per second played at quarter speed, plus t = 0.
+  CHECK(lineCount(dir / "a" / "timeline.csv") == 1 + 154);
+  CHECK(a.summary["state_hash"] == b.summary["state_hash"]);
+  // The 56 km/h barrier crash: a dent of the order of half a metre and a small rebound (DESIGN.md 5).
+  CHECK(summary["impact_speed_mps"].get<double>() > 14.0);
+  CHECK(summary["residual_crush_m"].get<double>() > 0.2);
+  CHECK(summary["residual_crush_m"].get<double>() < 0.9);
+  CHECK(summary["restitution"].get<double>() < 0.3);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a rendered wall crash: car where the camera puts it, heat map red in front, video decodes",
+          "[run][render]") {
+  const fs::path dir = freshDir("sandbox_run_render");
+  sandbox::RunOptions options;
+  options.scene = "wall_crash";
+  options.progress = false;
+  options.out = dir.string();
+  options.frames = true;
+  options.video = sandbox::render::VideoWriter::available();
+  options.heatmap = true;
+  options.width = 320;
+  options.height = 180;
+  options.sets = {"outputs.playback_speed=1", "outputs.fps=10"};
+  const sandbox::RunResult result = sandbox::runScene(options);
+  CHECK(result.frames == 17);  // 1.6 s at 10 frames per second, plus t = 0
+  CHECK(lineCount(dir / "timeline.csv") == 1 + 17);
+  CHECK(result.summary["timing_ms"]["embed"].get<double>() > 0);
+  CHECK(fs::exists(dir / "frames" / "00016.png"));
+  CHECK_FALSE(fs::exists(dir / "frames" / "00017.png"));
+
+  if (options.video) {
+    const std::string command =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames,width,height -of csv=p=0 " +
+        sandbox::render::shellQuote(result.video_path);
+    std::FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe);
+    char line[128] = {};
+    const bool read = std::fgets(line, sizeof line, pipe) != nullptr;
+    pclose(pipe);
+    REQUIRE(read);
+    CHECK(std::string(line).rfind("320,180,17", 0) == 0);
+  } else {
+    WARN("ffmpeg not installed: video not checked");
+  }
+
+  // Frame 0 (t = 0, nothing dented: the heat map is all blue) drawn where the camera puts the car.
+  scenes::SceneConfig scene = scenes::loadScene("wall_crash");
+  scene.outputs.width = 320;
+  scene.outputs.height = 180;
+  scenes::SceneRun run(scene);
+  scenes::StageTimes times;
+  sandbox::RunRenderer renderer(run, scene.outputs, times);
+  const sandbox::render::Image image = renderer.frame(run, times);
+  const sandbox::render::Camera camera = sandbox::sceneCamera(run);
+  const deform::Aabb box = deform::boundingBox(run.model(0).body);
+  const vehicle::Pose pose = run.simulation().world().car(run.carId(0)).vehiclePose();
+  const Eigen::Vector3d centre = pose.toWorld(0.5 * (box.min_m + box.max_m) + Eigen::Vector3d(0, 0, 0.15));
+  const Eigen::Vector3f pixel = sandbox::render::projectToPixel(camera, centre.cast<float>(), 320, 180);
+  REQUIRE(pixel.x() >= 0);
+  REQUIRE(pixel.x() < 320);
+  REQUIRE(pixel.y() >= 0);
+  REQUIRE(pixel.y() < 180);
+  std::size_t blue = 0;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const std::size_t at = (static_cast<std::size_t>(pixel.y() + static_cast<float>(dy)) * 320 +
+                              static_cast<std::size_t>(pixel.x() + static_cast<float>(dx))) *
+                             4;
+      const int r = image.rgba[at], g = image.rgba[at + 1], b = image.rgba[at + 2];
+      if (b > r + 60 && b > g + 20) ++blue;
+    }
+  }
+  CHECK(blue >= 20);  // the body's heat-map blue covers the projected centre
+
+  // After the crash: the heat map is red at the crushed front and blue at the rear.
+  run.runToEnd();
+  const deform::Mesh body = sandbox::deformedBody(run, 0);
+  const float full_scale = static_cast<float>(0.06 * box.diagonal_m());
+  const std::vector<Eigen::Vector3f> colours =
+      deform::displacementColours(run.model(0).body.positions_m, body.positions_m, full_scale);
+  std::size_t front = 0, front_red = 0, rear = 0, rear_blue = 0;
+  for (std::size_t j = 0; j < colours.size(); ++j) {
+    const float x = run.model(0).body.positions_m[j].x();
+    const Eigen::Vector3f c = colours[j];
+    if (x > static_cast<float>(box.max_m.x()) - 0.15f) {
+      ++front;
+      if (c.x() > 0.8f && c.z() < 0.2f) ++front_red;
+    } else if (x < static_cast<float>(box.min_m.x()) + 1.0f) {
+      ++rear;
+      if (c.z() > 0.8f && c.x() < 0.2f) ++rear_blue;
+    }
+  }
+  std::printf("[figure] wall_crash heat map: %zu of %zu front vertices red, %zu of %zu rear vertices blue\n",
+              front_red, front, rear_blue, rear);
+  CHECK(front_red > front * 8 / 10);
+  CHECK(rear_blue > rear * 9 / 10);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("sandbox export writes the damaged car as GLB and OBJ that read back", "[run]") {
+  const fs::path dir = freshDir("sandbox_export");
+  fs::create_directories(dir);
+  for (const char* name : {"car.glb", "car.obj"}) {
+    sandbox::ExportOptions options;
+    options.scene = "wall_crash";
+    options.at_s = 1.0;
+    options.out = (dir / name).string();
+    sandbox::exportScene(options);
+    const deform::VehicleModel back = deform::loadVehicleModel(options.out);
+    const deform::Aabb box = deform::boundingBox(back.body);
+    INFO(name);
+    // 4.8 m long when new, crushed by about half a metre; still 1.8 m wide and upright.
+    CHECK(box.size_m().x() < 4.5);
+    CHECK(box.size_m().x() > 3.5);
+    CHECK(box.size_m().y() == Approx(1.8).margin(0.15));
+    CHECK(box.size_m().z() > 1.2);
+    CHECK(back.body.triangles.size() > 20000);
+  }
+  CHECK_THROWS_WITH(sandbox::exportScene({"wall_crash", 0.5, (dir / "car.stl").string(), 0, {}}),
+                    Catch::Contains("--out"));
+  CHECK_THROWS_WITH(sandbox::exportScene({"wall_crash", 9.0, (dir / "car.glb").string(), 0, {}}),
+                    Catch::Contains("--at"));
+  fs::remove_all(dir);
+}
