@@ -98,7 +98,7 @@ TEST_CASE("Crush: 56 km/h full-width rigid barrier as in NCAP / FMVSS 208", "[cr
   // Energy: the crumple took the kinetic energy, most of it as plastic work; nothing created.
   const EnergyTerms& e = m.energy;
   CHECK(e.kinetic_initial_J == Approx(0.5 * 1500 * std::pow(56 * kKmh, 2)).epsilon(0.03));
-  CHECK(e.plastic_work_J > 0.5 * e.kinetic_initial_J);
+  CHECK(e.plastic_work_J > 0.75 * e.kinetic_initial_J);
   CHECK(e.plastic_work_J <= e.crush_work_J);
   CHECK(e.dissipated_J >= 0);
   CHECK(e.kinetic_final_J < 0.03 * e.kinetic_initial_J);
@@ -110,7 +110,7 @@ TEST_CASE("Crush grows with impact speed; no permanent dent at 4 km/h", "[crush]
   const CrashMetrics bump = wallCrash(4, 0.8).metrics;
   checkSane(bump);
   CHECK(bump.max_residual_crush_m < 0.002);  // the bumper's elastic range
-  CHECK(bump.restitution > 0.3);             // low-speed impacts bounce back
+  CHECK(bump.restitution > 0.2);             // low-speed impacts bounce back
 
   double previous = bump.residual_crush_m;
   for (double kmh : {5.0, 16.0, 32.0, 56.0, 100.0}) {

@@ -83,7 +83,8 @@ struct DeformableCar {
   deform::ControlMesh mesh;
   std::shared_ptr<const deform::BodySettings> body_settings;
   std::unique_ptr<deform::DeformableBody> body;
-  CrushShapes shapes;
+  CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
+  CrushShapes substep_shapes;       ///< the same, where it is at a substep
   std::vector<EntityRef> touching;  ///< crushable entities in contact this step
   /// Its control points in the world before this step's deformation: what other cars dent against
   /// (taken for every car first, so the order cars are stepped in does not matter).
@@ -212,7 +213,7 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   dc->body_settings =
       std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
   deform::SolverParams params;
-  params.substeps = static_cast<uint32_t>(deformation.substeps);
+  params.substeps = 1;  // the substeps are taken one deform step each (Impl::stepCar)
   params.iterations = static_cast<uint32_t>(deformation.iterations);
   params.damping_per_s = deformation.damping;
   params.inertial_scale = deformation.inertial_scale;
@@ -319,6 +320,11 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   deform::StepInputs inputs;
   inputs.contact_friction = dc.settings.contact_friction;
   dc.shapes.clear();
+  struct Moving {
+    ObstacleShape local;
+    Eigen::Vector3d sweep, down, travel;
+  };
+  std::vector<Moving> moving;
   for (const EntityRef& other : dc.touching) {
     const ObstacleShape world_shape = worldShapeOf(other);
     const ObstacleShape local = transformShape(world_shape, frame);
@@ -344,6 +350,9 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
         supportPoint(world_shape, -Eigen::Vector3d::UnitZ()).z() < 0.05)
       down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
     dc.shapes.add(local, sweep, down);
+    // How far the obstacle moved in the vehicle frame during the step (translation) [m].
+    const Eigen::Vector3d travel = -(to_vehicle * (car.velocity_mps() - velocityOf(other))) * dt;
+    moving.push_back({local, sweep, down, travel});
   }
   inputs.contacts = dc.shapes.shapes();
 
@@ -387,7 +396,29 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
 
   dc.plastic_before_step_J = state.plastic_work_J;
   const double body_before_J = deform::bodyEnergy(*dc.body_settings, state).total_J();
-  const deform::StepReport report = dc.body->step(inputs, dt);
+  // deform keeps an obstacle still through the substeps of a step, so one that moved v dt during the step
+  // would push the points in its way by all of it in the first substep, at `substeps` times the closing
+  // speed (and 1/2 m (S v)^2 of kinetic energy). Instead the substeps are taken here, one deform step each,
+  // with every obstacle moved along its path through the step (translation; its turn is neglected).
+  deform::StepReport report;
+  const int substeps = dc.settings.substeps;
+  for (int k = 1; k <= substeps; ++k) {
+    if (k > 1) inputs.impulses.clear();  // impulses act once, at the start of the step
+    if (!moving.empty()) {
+      dc.substep_shapes.clear();
+      const double behind = static_cast<double>(substeps - k) / static_cast<double>(substeps);
+      for (const Moving& o : moving)
+        dc.substep_shapes.add(
+            transformShape(o.local, Pose{behind * o.travel, Eigen::Quaterniond::Identity()}), o.sweep,
+            o.down);
+      inputs.contacts = dc.substep_shapes.shapes();
+    }
+    const deform::StepReport part = dc.body->step(inputs, dt / substeps);
+    report.contact_points += part.contact_points;
+    report.plastic_work_J += part.plastic_work_J;
+    report.max_speed_mps = part.max_speed_mps;
+    report.asleep = part.asleep;
+  }
   const double absorbed_J = dc.body->state().plastic_work_J - dc.plastic_before_step_J +
                             deform::bodyEnergy(*dc.body_settings, dc.body->state()).total_J() - body_before_J;
 

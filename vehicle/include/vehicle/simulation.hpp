@@ -57,15 +57,15 @@ struct DeformationSettings {
   /// kReferenceControlPoints; with N points every compliance is scaled by sqrt(N / 60), which keeps the
   /// crush force about independent of the level of detail (measured: at a fixed compliance it grows as
   /// N^0.46) [m/N].
-  double compliance_m_per_N = 1e-6;
+  double compliance_m_per_N = 7e-7;
   /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
-  double shell_compliance_ratio = 4.0;
+  double shell_compliance_ratio = 12.0;
   /// Share of the vehicle mass carried by the control points in the deformation dynamics [-]: the
   /// crushable body shell (a body-in-white is about a quarter of a car's kerb mass). The ODE chassis keeps
   /// the whole mass; the points' mass only sets how the shell moves relative to it. (0, 1].
   double shell_mass_fraction = 1.0;
   /// Viscous damping of the control points' motion relative to the chassis [1/s].
-  double damping = 20.0;
+  double damping = 80.0;
   /// Coulomb friction of control points sliding on what they hit [-].
   double contact_friction = 0.3;
   /// Crush: intrusion of the chassis hull into what it hits beyond which ODE's rigid contact takes over
