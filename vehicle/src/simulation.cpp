@@ -247,6 +247,14 @@ void Simulation::step() {
     omega_before.push_back(car.angularVelocity_rad_s());
     kinetic_before.push_back(kineticEnergy(car));
     if (!dc->force_pending) continue;
+    // The energy-debt charge only ever slows the car: never more than would stop its closing motion now
+    // (the backstop or another contact may have stopped it since the charge was planned).
+    const double extra_N = dc->extra_force_N.norm();
+    if (extra_N > 0) {
+      const double closing_mps = std::max(0.0, -car.velocity_mps().dot(dc->extra_force_N / extra_N));
+      const double stop_N = car.mass_kg() * closing_mps / m.world.fixedDt_s();
+      if (extra_N > stop_N) dc->extra_force_N *= stop_N / extra_N;
+    }
     m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->force_N, dc->force_point_m);
     m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->extra_force_N, car.bodyPose().position_m);
     for (const EntityRef& other : dc->force_others) {

@@ -150,7 +150,10 @@ struct World::Impl {
       }
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
       c.surface.mu = mu;
-      c.surface.soft_erp = self->settings.contact_erp;
+      // A crush backstop corrects its overlap gently: the crushed structure in front of it does not
+      // spring back, so a stiff push-out would throw the car back.
+      const bool core = r1 == GeomRole::Core || r2 == GeomRole::Core;
+      c.surface.soft_erp = core ? 0.1 * self->settings.contact_erp : self->settings.contact_erp;
       c.surface.soft_cfm = self->settings.contact_cfm;
       dJointID joint = dJointCreateContact(self->world, self->contact_joints, &c);
       dJointAttach(joint, b1, b2);
