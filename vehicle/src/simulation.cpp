@@ -477,7 +477,10 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     dc.force_others = dc.touching;
   }
 
-  // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5).
+  // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5): no
+  // point has touched anything for 0.1 s, the body is at rest, and the old hull touches nothing it could
+  // crush (the new hull is convex: around a pole's notch it would fill the notch, and its backstop would
+  // throw the car off the pole).
   if (report.contact_points > 0) {
     dc.hull_dirty = true;
     dc.quiet_steps = 0;
@@ -486,7 +489,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   }
   const int quiet_needed = std::max(1, static_cast<int>(std::ceil(0.1 / dt)));
   if (dc.settings.coupling == Coupling::Crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed &&
-      report.max_speed_mps < 0.05) {
+      dc.touching.empty() && report.max_speed_mps < 0.05) {
     const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
     car.setCollisionHull(deform::buildControlMesh(dc.body->state().positions_m, n, "dented body"));
     const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
@@ -530,6 +533,10 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
         dc.impact_normal_sum += (c.depth_m + 1e-6) * (car.vehiclePose().orientation * c.normal);
     if (dc.impact_normal_sum.norm() > 1e-12) {
       dc.impact_normal = dc.impact_normal_sum.normalized();
+      // Crash tests measure along the road: a mostly horizontal normal is taken horizontal, so the car's
+      // pitching and bouncing do not count as rebound.
+      const Eigen::Vector3d horizontal_normal(dc.impact_normal.x(), dc.impact_normal.y(), 0);
+      if (horizontal_normal.norm() > 0.5) dc.impact_normal = horizontal_normal.normalized();
       const Eigen::Vector3d horizontal =
           car.vehiclePose().orientation.conjugate() * Eigen::Vector3d(-dc.impact_normal);
       dc.impact_direction_vehicle = Eigen::Vector3d(horizontal.x(), horizontal.y(), 0);

@@ -105,7 +105,8 @@ struct EnergyTerms {
 
 /// What a run did to one car (all since its first impact; zeros before it).
 struct CrashMetrics {
-  /// Closing speed along the first contact's normal at impact [m/s].
+  /// Closing speed along the impact normal at impact [m/s]: the depth-weighted contact normal over the
+  /// first 10 ms of contact with what was hit first, made horizontal when it is mostly so.
   double impact_speed_mps = 0;
   /// Largest separating speed along that normal afterwards [m/s]; restitution = rebound / impact [-].
   double rebound_speed_mps = 0;
