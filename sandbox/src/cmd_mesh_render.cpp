@@ -80,6 +80,7 @@ void runMeshRender(const MeshRenderFlags& flags) {
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path())) {
     throw deform::InputError("--out: folder " + out.parent_path().string() + " does not exist");
   }
+  if (std::filesystem::is_directory(out)) throw deform::InputError("--out: " + flags.out + " is a folder");
   const float aspect = static_cast<float>(flags.width) / static_cast<float>(flags.height);
   render::presetCamera(flags.camera, deform::Aabb{{-1, -1, -1}, {1, 1, 1}}, aspect);  // name check first
 
@@ -113,10 +114,9 @@ void runMeshRender(const MeshRenderFlags& flags) {
   if (flags.timing_frames > 0) {
     const auto camera = render::presetCamera(flags.camera, box, aspect);
     const auto environment = render::environmentAround(box);
-    std::vector<Eigen::Vector3f> positions = model.body.positions_m;
     const auto timing_start = std::chrono::steady_clock::now();
     for (int i = 0; i < flags.timing_frames; ++i) {
-      renderer.updatePositions(0, positions, model.body.normals);  // as a deforming body would
+      renderer.updatePositions(0, meshes.front().positions_m, meshes.front().normals);  // as a deforming body
       (void)renderer.renderImage(camera, environment);
     }
     const double each =

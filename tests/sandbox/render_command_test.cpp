@@ -51,6 +51,8 @@ TEST_CASE("sandbox mesh render refuses bad input naming the flag or file", "[ren
                     Catch::Contains("--width"));
   CHECK_THROWS_WITH(runSandbox({"mesh", "render", "builtin:box", "--out", "/no/such/folder/x.png"}),
                     Catch::Contains("--out"));
+  CHECK_THROWS_WITH(runSandbox({"mesh", "render", "builtin:box", "--out", dir.string()}),
+                    Catch::Contains("--out"));
   CHECK_THROWS_WITH(runSandbox({"mesh", "render", (dir / "missing.obj").string(), "--out", out}),
                     Catch::Contains("missing.obj"));
   CHECK_THROWS_WITH(runSandbox({"mesh", "render", "builtin:box", "--out", out, "--heatmap-point", "100000",
