@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "render/png_io.hpp"
+#include "render_test_support.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,9 +25,7 @@ void runSandbox(std::vector<std::string> args) {
 }  // namespace
 
 TEST_CASE("sandbox mesh render writes a PNG of the requested size", "[render]") {
-  const fs::path dir = fs::temp_directory_path() / "sandbox_render_command_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = render_test::scratchDir("render_command_test");
   const std::string out = (dir / "box.png").string();
   runSandbox(
       {"mesh", "render", "builtin:box", "--out", out, "--width", "160", "--height", "90", "--camera", "top"});
@@ -42,8 +41,7 @@ TEST_CASE("sandbox mesh render writes a PNG of the requested size", "[render]") 
 }
 
 TEST_CASE("sandbox mesh render refuses bad input naming the flag or file", "[render]") {
-  const fs::path dir = fs::temp_directory_path() / "sandbox_render_command_bad";
-  fs::create_directories(dir);
+  const fs::path dir = render_test::scratchDir("render_command_bad");
   const std::string out = (dir / "x.png").string();
   CHECK_THROWS_WITH(runSandbox({"mesh", "render", "builtin:box", "--out", out, "--camera", "fisheye"}),
                     Catch::Contains("--camera"));

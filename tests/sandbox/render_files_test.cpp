@@ -10,18 +10,12 @@
 #include "render/colour_ramp.hpp"
 #include "render/png_io.hpp"
 #include "render/video_writer.hpp"
+#include "render_test_support.hpp"
 
 using namespace sandbox::render;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path scratchDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sandbox_render_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // Hue in degrees [0, 360) of an RGB colour.
 float hueDegrees(const Eigen::Vector3f& c) {
@@ -91,7 +85,7 @@ TEST_CASE("heatColour runs from blue (none) to red (most) with a falling hue", "
 }
 
 TEST_CASE("writePng then readPng gives back the same pixels", "[render]") {
-  const fs::path dir = scratchDir("png");
+  const fs::path dir = render_test::scratchDir("render_png");
   const Image image = gradientImage(37, 23);  // odd sizes: rows are not padded
   const std::string path = (dir / "frame.png").string();
   writePng(path, image.width, image.height, image.rgba);
@@ -104,7 +98,7 @@ TEST_CASE("writePng then readPng gives back the same pixels", "[render]") {
 }
 
 TEST_CASE("PNG failures name the path and leave no file behind", "[render]") {
-  const fs::path dir = scratchDir("png_fail");
+  const fs::path dir = render_test::scratchDir("render_png_fail");
   const Image image = gradientImage(8, 4);
   const std::string missing_folder = (dir / "no_such_folder" / "frame.png").string();
   CHECK_THROWS_WITH(writePng(missing_folder, image.width, image.height, image.rgba),
@@ -127,7 +121,7 @@ TEST_CASE("VideoWriter makes an MP4 that ffprobe decodes frame by frame", "[rend
     WARN("ffmpeg or ffprobe is not installed: video test skipped");
     return;
   }
-  const fs::path dir = scratchDir("video");
+  const fs::path dir = render_test::scratchDir("render_video");
   // An odd size too: yuv420p needs even sides, the writer pads.
   for (const auto& [width, height] : {std::pair{64, 36}, std::pair{63, 35}}) {
     const std::string path = (dir / ("video_" + std::to_string(width) + ".mp4")).string();
@@ -160,7 +154,7 @@ TEST_CASE("VideoWriter makes an MP4 that ffprobe decodes frame by frame", "[rend
 }
 
 TEST_CASE("VideoWriter refuses a missing ffmpeg and leaves nothing when abandoned", "[render]") {
-  const fs::path dir = scratchDir("video_fail");
+  const fs::path dir = render_test::scratchDir("render_video_fail");
   const std::string path = (dir / "video.mp4").string();
   VideoSettings settings{32, 32, 10.0};
   settings.ffmpeg = "ffmpeg-that-is-not-installed";

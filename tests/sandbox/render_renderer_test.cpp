@@ -186,9 +186,7 @@ TEST_CASE("fitCamera keeps every corner of the box inside the picture margin", "
 }
 
 TEST_CASE("rendered frames become PNGs and an MP4 through FrameOutput", "[render]") {
-  const fs::path dir = fs::temp_directory_path() / "sandbox_render_frames_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = render_test::scratchDir("render_frames_test");
   const deform::VehicleModel model = deform::loadVehicleModel("builtin:sedan?vertices=3000");
   Renderer renderer({kWidth, kHeight, 0});
   for (const MeshData& mesh : vehicleMeshes(model)) renderer.addMesh(mesh);

@@ -1,9 +1,18 @@
 #include "render_test_support.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
 
 namespace render_test {
+
+std::filesystem::path scratchDir(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sandbox_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 Silhouette silhouette(const sandbox::render::Image& image, const Eigen::Vector3i& background, int tolerance) {
   Silhouette s;

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <filesystem>
+#include <string>
 
 namespace render_test {
 
@@ -15,6 +17,10 @@ struct Silhouette {
   Eigen::Vector2f min{0, 0};
   Eigen::Vector2f max{0, 0};
 };
+
+/// An empty folder under the temporary directory, unique to `name` and this process (several engineers'
+/// test runs share /tmp at the same time).
+std::filesystem::path scratchDir(const std::string& name);
 
 Silhouette silhouette(const sandbox::render::Image& image, const Eigen::Vector3i& background,
                       int tolerance = 6);
