@@ -56,3 +56,23 @@ TEST_CASE("bad contact shapes are refused naming the field", "[dynamics]") {
                     Catch::Contains("contacts[1].normal"));
   CHECK_THROWS_AS(checkContactShape(ConvexSupportShape{}, "contacts[2]"), InputError);
 }
+
+TEST_CASE("within the contact margin a point outside is reported with a negative depth", "[dynamics]") {
+  Penetration p;
+  CHECK_FALSE(penetration(HalfSpaceShape{{0, 0, 1}, 0.0}, {0, 0, 0.005}, p));
+  REQUIRE(penetration(HalfSpaceShape{{0, 0, 1}, 0.0}, {0, 0, 0.005}, p, 0.01));
+  CHECK(p.depth_m == Approx(-0.005));
+  REQUIRE(penetration(SphereShape{{0, 0, 0}, 1.0}, {0, 1.004, 0}, p, 0.01));
+  CHECK(p.depth_m == Approx(-0.004));
+  CHECK_FALSE(penetration(CapsuleShape{{0, 0, 0}, {0, 0, 1}, 0.5}, {0.52, 0, 0.5}, p, 0.01));
+  // libccd: the point inflated to a ball of the margin's radius.
+  std::vector<Eigen::Vector3d> corners;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-1.0, 1.0}) corners.emplace_back(x, y, z);
+  const ConvexPoints cube(corners);
+  REQUIRE(penetration(cube.shape(), {0.2, 0.1, 1.006}, p, 0.01));
+  CHECK(p.depth_m == Approx(-0.006).margin(1e-6));
+  CHECK(p.normal.z() == Approx(1.0).margin(1e-6));
+  CHECK_FALSE(penetration(cube.shape(), {0.2, 0.1, 1.02}, p, 0.01));
+}
