@@ -123,6 +123,13 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
     });
     vehicle::VehicleSettings base;
     base.wheels = vehicle::wheelsFromModel(base, model);
+    if (v.wheels_in_body && model.wheels.empty()) {
+      // Modelled wheels are part of the body: tyres touching down at the mesh's bottom (plus 1 %).
+      const deform::Aabb box = deform::boundingBox(model.body);
+      for (vehicle::WheelSettings& w : base.wheels) {
+        w.centre_m.z() = box.min_m.z() + w.radius_m + 0.01 * box.size_m().z();
+      }
+    }
     const vehicle::VehicleSettings settings =
         withSource(where + ".mass_kg", [&] { return vehicle::settingsForMass(base, v.mass_kg); });
     vehicle::CarStart start;

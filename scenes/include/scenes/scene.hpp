@@ -58,7 +58,11 @@ struct VehicleConfig {
   double mesh_scale = 1.0;  ///< file units to metres [-]
   std::optional<std::string> mesh_up;       ///< file's up axis (+x, -y, ...); default per format
   std::optional<std::string> mesh_forward;  ///< file's forward axis; default per format
-  double mass_kg = 1500;                    ///< whole vehicle [kg]
+  /// Where the (force) wheels go when the model has no wheel parts: false, the vehicle library's
+  /// bounding-box wheels (hubs under the body: a body without wheels); true, inside the bounding box with
+  /// the tyres' bottoms 1 % of the height above its bottom (a mesh whose wheels are part of the body).
+  bool wheels_in_body = false;
+  double mass_kg = 1500;  ///< whole vehicle [kg]
   StartConfig start;
   DeformationConfig deformation;  ///< knobs and coupling (crush or visual)
   DriveScript drive;
