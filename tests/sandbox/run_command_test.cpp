@@ -72,6 +72,9 @@ TEST_CASE("headless runs never embed, write the named figures and repeat bit for
   CHECK(summary["residual_crush_m"].get<double>() > 0.2);
   CHECK(summary["residual_crush_m"].get<double>() < 0.9);
   CHECK(summary["restitution"].get<double>() < 0.3);
+  // Energy is not created: the plastic work stays within the kinetic energy at impact.
+  CHECK(summary["energy"]["plastic_work_J"].get<double>() <=
+        1.05 * summary["energy"]["kinetic_initial_J"].get<double>());
   fs::remove_all(dir);
 }
 
