@@ -88,7 +88,8 @@ fs::path prepareOutput(const std::string& dir, bool frames) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out)) throw deform::InputError("--out: cannot create folder " + dir);
-  // Frames of an earlier run must not pass for this run's.
+  // Frames and a video of an earlier run must not pass for this run's.
+  fs::remove(out / "video.mp4", ec);
   if (fs::is_directory(out / "frames")) {
     for (const auto& entry : fs::directory_iterator(out / "frames")) {
       if (entry.path().extension() == ".png") fs::remove(entry.path());
