@@ -128,7 +128,7 @@ TEST_CASE("a scene that is not valid JSON is refused naming file, line and colum
   fs::remove(path);
 }
 
-TEST_CASE("--set overrides any key and is checked as strictly as the file", "[scenes]") {
+TEST_CASE("overrides (--set) change any key and are checked as strictly as the file", "[scenes]") {
   json doc = minimalScene();
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed_kmh=5"));
   scenes::applyOverride(doc, scenes::parseOverride("obstacles[0].size_m=[1,5,2]"));
