@@ -72,6 +72,8 @@ TEST_CASE("heatColour runs from blue (none) to red (most) with a falling hue", "
   CHECK(heatColour(-3.0f).isApprox(none));
   CHECK(heatColour(7.0f).isApprox(most));
   CHECK(heatColour(std::nanf("")).isApprox(most));
+  CHECK(heatColour(-INFINITY).isApprox(none));
+  CHECK(heatColour(INFINITY).isApprox(most));
   float previous = hueDegrees(none);
   for (int i = 1; i <= 200; ++i) {
     const Eigen::Vector3f c = heatColour(static_cast<float>(i) / 200.0f);
