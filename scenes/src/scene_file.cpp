@@ -296,7 +296,11 @@ void applyOverride(json& document, const Override& override) {
     walked += (walked.empty() ? "" : ".") + part;
     if (node->is_array()) {
       const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
-      const std::size_t index = digits && part.size() < 9 ? std::stoul(part) : node->size();
+      const std::size_t index = digits && part.size() < 9 ? std::stoul(part) : node->size() + 1;
+      if (last && index == node->size()) {  // one past the end appends
+        node->push_back(value);
+        return;
+      }
       if (index >= node->size()) {
         throw deform::InputError("--set " + override.path + ": " + walked + ": no such item (the array has " +
                                  std::to_string(node->size()) + ")");

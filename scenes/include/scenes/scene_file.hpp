@@ -22,7 +22,8 @@ struct Override {
 Override parseOverride(const std::string& text);
 
 /// Sets `override.path` in `document` (objects along the path are created when missing; array indices
-/// must exist). Throws InputError naming --set and the path when the path crosses a non-object value.
+/// must exist, or be one past the end as the last part of the path: that appends). Throws InputError naming
+/// --set and the path when the path crosses a non-object value.
 void applyOverride(nlohmann::json& document, const Override& override);
 
 /// The scene file for `name_or_path`: an existing file, else a shipped scene's name (`wall_crash` ->
