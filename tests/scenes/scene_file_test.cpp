@@ -138,6 +138,15 @@ TEST_CASE("overrides (--set) change any key and are checked as strictly as the f
   CHECK(scene.obstacles[0].size_m.y() == 5);
   CHECK(scene.vehicles[0].deformation.settings.control_points == 32);
 
+  // One past the end appends (an extra obstacle), checked like the rest.
+  doc = minimalScene();
+  scenes::applyOverride(
+      doc, scenes::parseOverride(
+               R"(obstacles.1={"type": "post", "position_m": [9, 1], "radius_m": 0.1, "height_m": 1})"));
+  CHECK(scenes::parseScene(doc, "test.json").obstacles.size() == 2);
+  scenes::applyOverride(doc, scenes::parseOverride(R"(obstacles.2={"type": "post"})"));
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: obstacles[2].position_m: missing"));
+
   doc = minimalScene();
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed=5"));
   CHECK_THAT(refusal(doc), Catch::Contains("vehicle.start.speed: unknown key"));
