@@ -12,7 +12,7 @@ namespace sandbox::render {
 struct MeshData {
   std::vector<Eigen::Vector3f> positions_m;  ///< vertex positions in the mesh's own frame [m]
   std::vector<Eigen::Vector3f> normals;      ///< unit vertex normals, one per position (required)
-  std::vector<deform::Triangle> triangles;   ///< vertex indices; winding does not matter (two-sided)
+  std::vector<deform::Triangle> triangles;   ///< vertex indices; winding matters only when `closed`
   std::vector<Eigen::Vector3f> colours;      ///< per-vertex sRGB (heat map); empty: base_colour
   Eigen::Matrix4f model = Eigen::Matrix4f::Identity();  ///< mesh frame -> world (rigid + uniform scale)
   Eigen::Vector3f base_colour{0.75f, 0.08f, 0.06f};     ///< sRGB colour without per-vertex colours
