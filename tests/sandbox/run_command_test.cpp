@@ -15,6 +15,7 @@
 #include <string>
 
 #include "render/video_writer.hpp"
+#include "render_test_support.hpp"
 #include "run_command.hpp"
 #include "run_render.hpp"
 
@@ -22,10 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A scratch folder of this process (several test runs may share /tmp).
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / name;
-  fs::remove_all(dir);
-  return dir;
+  return render_test::scratchDir(name);
 }
 
 std::size_t lineCount(const fs::path& path) {
@@ -170,7 +170,6 @@ TEST_CASE("a rendered wall crash: car where the camera puts it, heat map red in 
 
 TEST_CASE("sandbox export writes the damaged car as GLB and OBJ that read back", "[run]") {
   const fs::path dir = freshDir("sandbox_export");
-  fs::create_directories(dir);
   for (const char* name : {"car.glb", "car.obj"}) {
     sandbox::ExportOptions options;
     options.scene = "wall_crash";
