@@ -40,6 +40,17 @@ const PaperFigure kFigures[] = {
      "the "
      "concept to test models to emphasis particular characteristics (e.g., a drinks can).",
      figures::canFigure},
+    {"Direct Wall Collision",
+     "An example of a head on crash into a flat wall. We can visually see the spatial influence of the front "
+     "deformation across the car's body. ... We can visualize the coupled influence of the deformation "
+     "across the "
+     "car using colors (i.e., red largest influence and blue no influence).",
+     figures::wallCrashFigure},
+    {"Mesh Deformation",
+     "A vehicle with 900,000 vertices and 60 control points that has bumped into minor objects (e.g., posts "
+     "and "
+     "vegetation).",
+     figures::minorHitsFigure},
 };
 
 void runFigures(const FiguresFlags& flags) {

@@ -28,4 +28,10 @@ Figure weightingFigure(const FigureOptions& options);
 /// The drinks can and its control mesh.
 Figure canFigure(const FigureOptions& options);
 
+/// Figure "Direct Wall Collision": the wall_crash scene, the car coloured by permanent displacement.
+Figure wallCrashFigure(const FigureOptions& options);
+
+/// Figure "Mesh Deformation": a 900,000-vertex car with 60 control points after minor hits (post_bumps).
+Figure minorHitsFigure(const FigureOptions& options);
+
 }  // namespace sandbox::figures
