@@ -34,3 +34,29 @@ TEST_CASE("every shipped scene runs headless to its end without divergence", "[r
     CHECK(summary["timing_ms"]["embed"].get<double>() == 0);
   }
 }
+
+TEST_CASE("obstacles far from every car change nothing and cost little", "[run]") {
+  scenes::SceneConfig scene = scenes::loadScene("wall_crash");
+  scene.duration_s = 0.6;
+  const auto timed = [](const scenes::SceneConfig& config, std::string& hash) {
+    const auto start = std::chrono::steady_clock::now();
+    scenes::SceneRun run(config);
+    run.runToEnd();
+    hash = run.summary()["state_hash"].get<std::string>();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::string plain_hash, crowded_hash;
+  const double plain_s = timed(scene, plain_hash);
+  for (int i = 0; i < 200; ++i) {  // a forest of posts a kilometre away
+    scenes::ObstacleConfig post;
+    post.type = scenes::ObstacleType::Post;
+    post.position_m = {1000.0 + 3.0 * (i % 20), 3.0 * (i / 20), 0.0};
+    post.radius_m = 0.1;
+    post.height_m = 1.0;
+    scene.obstacles.push_back(post);
+  }
+  const double crowded_s = timed(scene, crowded_hash);
+  std::printf("[figure] wall_crash 0.6 s: %.3f s alone, %.3f s with 200 far posts\n", plain_s, crowded_s);
+  CHECK(crowded_hash == plain_hash);
+  CHECK(crowded_s < 3.0 * plain_s + 0.2);
+}
