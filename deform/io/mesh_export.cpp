@@ -1,4 +1,4 @@
-#include <scenes/mesh_export.hpp>
+#include <deform/mesh_export.hpp>
 
 #include <deform/error.hpp>
 
@@ -10,7 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
-namespace scenes {
+namespace deform {
 
 void exportMesh(const deform::Mesh& mesh, const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
@@ -18,7 +18,7 @@ void exportMesh(const deform::Mesh& mesh, const std::string& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const bool glb = extension == ".glb";
   if (!glb && extension != ".obj") {
-    throw deform::InputError("--out: " + path + ": unknown format (give a .glb or .obj file)");
+    throw InputError("--out: " + path + ": unknown format (give a .glb or .obj file)");
   }
   // A glTF asset is Y up with its front along +Z, so +X is the car's left: (x, y, z)_glTF = (y, z, x).
   const auto convert = [glb](const Eigen::Vector3f& v) {
@@ -58,4 +58,4 @@ void exportMesh(const deform::Mesh& mesh, const std::string& path) {
   }
 }
 
-}  // namespace scenes
+}  // namespace deform

@@ -1,6 +1,6 @@
 // `sandbox export SCENE --at T --out FILE.glb|.obj`: the damaged car at time T as a mesh (assimp's
 // exporter), in the vehicle frame, wheels at their hubs, to open in any 3D tool.
-#include <scenes/mesh_export.hpp>
+#include <deform/mesh_export.hpp>
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -47,7 +47,7 @@ void exportScene(const ExportOptions& options) {
     deform::appendMesh(mesh, tyre);
   }
   deform::computeVertexNormals(mesh);
-  scenes::exportMesh(mesh, options.out);
+  deform::exportMesh(mesh, options.out);
   std::printf("wrote %s: %s at t = %.3f s (%llu steps), %zu vertices, %zu triangles; state hash %s\n",
               options.out.c_str(), scene.vehicles[options.car].name.c_str(), run.time_s(),
               static_cast<unsigned long long>(run.steps()), mesh.positions_m.size(), mesh.triangles.size(),
