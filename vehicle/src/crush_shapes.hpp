@@ -29,8 +29,11 @@ class CrushShapes {
   void clear();
   /// Adds `shape` (vehicle frame) extended by `sweep_m` and by `down_m` (into the ground under an obstacle
   /// standing on it, so a point deep in a wall is never pushed out under it); boxes stay exact primitives
-  /// (extended along their axes closest to the extensions), the rest become support shapes.
-  void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m, const Eigen::Vector3d& down_m);
+  /// (extended along their axes closest to the extensions), the rest become support shapes. A `post`
+  /// (a fixed cylinder or capsule) becomes the box around it facing the sweep (exact push-out, see
+  /// crush_shapes.cpp).
+  void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m, const Eigen::Vector3d& down_m,
+           bool post = false);
   const std::vector<deform::ContactShape>& shapes() const { return shapes_; }
   /// The same obstacles without the extensions (for measuring what is left inside them).
   const std::vector<deform::ContactShape>& exactShapes() const { return exact_; }

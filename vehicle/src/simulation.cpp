@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,22 @@ bool crushable(const World& world, EntityRef e) {
   if (e.kind == EntityRef::Kind::Car) return true;
   const ObstacleKind kind = world.obstacleKind(e.index);
   return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
+}
+
+/// An obstacle standing on the ground: its lowest point within 5 cm of z = 0 and, for a post or a box, an
+/// axis within 30 degrees of the vertical. Only such an obstacle is extended into the ground (so a point
+/// deep in a wall is never pushed out under it): a knocked-over tree lying from the ground across the
+/// bonnet, extended 2 m down, would be a slab through the car's front.
+bool standsOnGround(const ObstacleShape& shape) {
+  if (shape.type == ShapeType::HalfSpace || supportPoint(shape, -Eigen::Vector3d::UnitZ()).z() >= 0.05)
+    return false;
+  const double upright = std::cos(std::numbers::pi / 6);
+  if (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule) {
+    const Eigen::Vector3d along = shape.b_m - shape.a_m;
+    return std::abs(along.z()) > upright * along.norm();
+  }
+  if (shape.type == ShapeType::Box) return shape.axes.row(2).cwiseAbs().maxCoeff() > upright;  // unit axes
+  return true;
 }
 
 }  // namespace
@@ -331,6 +348,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   struct Moving {
     ObstacleShape local;
     Eigen::Vector3d sweep, down, travel;
+    bool post;
   };
   std::vector<Moving> moving;
   for (const EntityRef& other : dc.touching) {
@@ -352,15 +370,15 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
           std::max(0.0, -(to_vehicle * (car.velocity_mps() - velocityOf(other))).dot(normal));
       sweep = -(2.0 * (deepest_m + closing * dt) + 0.05) * normal;
     }
-    // An obstacle standing on the ground (its lowest point within 5 cm of z = 0) reaches into it.
+    // An obstacle standing on the ground reaches into it.
     Eigen::Vector3d down{0, 0, 0};
-    if (world_shape.type != ShapeType::HalfSpace &&
-        supportPoint(world_shape, -Eigen::Vector3d::UnitZ()).z() < 0.05)
-      down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
-    dc.shapes.add(local, sweep, down);
+    if (standsOnGround(world_shape)) down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
+    const bool post =
+        other.kind == EntityRef::Kind::Obstacle && world.obstacleKind(other.index) == ObstacleKind::Post;
+    dc.shapes.add(local, sweep, down, post);
     // How far the obstacle moved in the vehicle frame during the step (translation) [m].
     const Eigen::Vector3d travel = -(to_vehicle * (car.velocity_mps() - velocityOf(other))) * dt;
-    moving.push_back({local, sweep, down, travel});
+    moving.push_back({local, sweep, down, travel, post});
   }
   inputs.contacts = dc.shapes.shapes();
 
@@ -417,8 +435,8 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
       const double behind = static_cast<double>(substeps - k) / static_cast<double>(substeps);
       for (const Moving& o : moving)
         dc.substep_shapes.add(
-            transformShape(o.local, Pose{behind * o.travel, Eigen::Quaterniond::Identity()}), o.sweep,
-            o.down);
+            transformShape(o.local, Pose{behind * o.travel, Eigen::Quaterniond::Identity()}), o.sweep, o.down,
+            o.post);
       inputs.contacts = dc.substep_shapes.shapes();
     }
     const deform::StepReport part = dc.body->step(inputs, dt / substeps);
