@@ -15,11 +15,14 @@ echo "| vertices | N | K | threads | pass ms | B/vertex | GB/s | copy GB/s | of 
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for c in "${cases[@]}"; do
   # shellcheck disable=SC2086
-  "$bin" bench embed $c --repetitions 31 --json | python3 -c '
+  "$bin" bench embed $c --repetitions 31 --json | python3 -c "$(cat <<'PY'
 import json, sys
 r = json.load(sys.stdin)
 k = "dense" if r["k"] == r["control_points"] else r["k"]
-print(f"| {r[\"vertices\"]:,} | {r[\"control_points\"]} | {k} | {r[\"threads\"]} | {r[\"ms\"]:.2f} | {r[\"bytes_per_vertex\"]} | "
-      f"{r[\"gb_per_s\"]:.1f} | {r[\"copy_gb_per_s\"]:.1f} | {100*r[\"bandwidth_fraction\"]:.0f} % | {r[\"baseline_aos_ms\"]:.2f} | "
-      f"{r[\"speedup_vs_aos\"]:.1f}x | {r[\"skin_build_ms\"]:.0f} |")'
+cells = [f"{r['vertices']:,}", r["control_points"], k, r["threads"], f"{r['ms']:.2f}", r["bytes_per_vertex"],
+         f"{r['gb_per_s']:.1f}", f"{r['copy_gb_per_s']:.1f}", f"{100 * r['bandwidth_fraction']:.0f} %",
+         f"{r['baseline_aos_ms']:.2f}", f"{r['speedup_vs_aos']:.1f}x", f"{r['skin_build_ms']:.0f}"]
+print("| " + " | ".join(str(c) for c in cells) + " |")
+PY
+)"
 done
