@@ -58,12 +58,7 @@ class SurfaceBuilder {
     const uint32_t other = owner_.at({b, a});
     const auto& o = mesh_.triangles[other];
     uint32_t d = o[0] + o[1] + o[2] - a - b;  // the vertex of `other` off the edge
-    unlink(best);
-    unlink(other);
-    mesh_.triangles[best] = {a, v, c};
-    mesh_.triangles[other] = {v, a, d};
-    link(best);
-    link(other);
+    replacePair(best, {a, v, c}, other, {v, a, d});
     addTriangle({v, b, c});
     addTriangle({b, v, d});
   }
@@ -88,6 +83,16 @@ class SurfaceBuilder {
     const auto& tri = mesh_.triangles[t];
     for (int k = 0; k < 3; ++k)
       owner_.erase({tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]});
+  }
+  /// Two neighbouring triangles rewritten at once (their shared edge changes).
+  void replacePair(uint32_t t, const std::array<uint32_t, 3>& new_t, uint32_t u,
+                   const std::array<uint32_t, 3>& new_u) {
+    unlink(t);
+    unlink(u);
+    mesh_.triangles[t] = new_t;
+    mesh_.triangles[u] = new_u;
+    link(t);
+    link(u);
   }
   void addTriangle(const std::array<uint32_t, 3>& tri) {
     mesh_.triangles.push_back(tri);
@@ -145,12 +150,7 @@ class SurfaceBuilder {
     // triangles keep the outward winding.
     const Eigen::Vector3d pl = mesh_.points_m[l], pr = mesh_.points_m[r];
     if (n.dot((pa - pl).cross(pr - pl)) <= 0 || n.dot((pb - pr).cross(pl - pr)) <= 0) return 0;
-    unlink(t);
-    unlink(u);
-    mesh_.triangles[t] = {l, a, r};
-    mesh_.triangles[u] = {r, b, l};
-    link(t);
-    link(u);
+    replacePair(t, {l, a, r}, u, {r, b, l});
     return 1;
   }
 
