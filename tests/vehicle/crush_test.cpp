@@ -223,6 +223,28 @@ TEST_CASE("Crush: nudging a thin post dents it by no more than the car intruded"
     }
 }
 
+TEST_CASE("Crush: a graze's restitution is its separation speed, not the driver steering away", "[crush]") {
+  // scenes/wall_slide.json: 60 km/h, 12 degrees into a long wall; the driver steers away after the
+  // graze. The rebound used to be the largest speed away from the wall ever (restitution 1.7).
+  Simulation sim;
+  CarStart start;
+  start.speed_mps = 60 * kKmh;
+  start.heading_rad = 12 * std::numbers::pi / 180;
+  const CarId id = sim.addDeformableCar(sedan(), {}, start, {});
+  sim.world().addWall(Pose{{25, 3.0, 0.4}, Eigen::Quaterniond::Identity()}, {50, 0.4, 0.8});
+  sim.run(1.3);
+  DriverInput away;
+  away.steering = -0.25;
+  away.brake = 0.3;
+  sim.world().car(id).setInput(away);
+  sim.run(1.2);
+  const CrashMetrics m = sim.metrics(id);
+  checkSane(m);
+  CHECK(m.impact_speed_mps == Approx(60 * kKmh * std::sin(12 * std::numbers::pi / 180)).epsilon(0.05));
+  CHECK(m.restitution > 0);
+  CHECK(m.restitution <= 1);
+}
+
 TEST_CASE("Crush: the collision hull follows the dent after the contact; a second impact", "[crush]") {
   Simulation sim;
   CarStart start;

@@ -127,7 +127,8 @@ struct DeformableCar {
   Eigen::Vector3d impact_relative_velocity_mps{0, 0, 0};           ///< before the impact step (world) [m/s]
   Eigen::Vector3d impact_com_m{0, 0, 0}, impact_other_m{0, 0, 0};  ///< at impact (world) [m]
   Eigen::Vector3d impact_normal_sum{0, 0, 0};
-  int impact_steps = 0;  ///< steps of contact the impact normal has been averaged over
+  int impact_steps = 0;     ///< steps of contact the impact normal has been averaged over
+  bool in_contact = false;  ///< in contact with what it hit first, last step (the rebound's window)
   double plastic_at_impact_J = 0;
   double plastic_before_step_J = 0;
   /// Energy the body took in (plastic work, change of its elastic and kinetic energy) that the crush
@@ -572,8 +573,14 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
         mt.max_penetration_m = std::max(mt.max_penetration_m, pen.depth_m);
 
   if (!mt.impacted) return;
+  // The rebound is the separation speed: measured while the car touches what it hit and in the step it
+  // leaves it, never afterwards (a car steering away from a wall it grazed is not a rebound).
+  const bool in_contact =
+      std::find(dc.touching.begin(), dc.touching.end(), dc.impact_other) != dc.touching.end();
   const Eigen::Vector3d relative = car.velocity_mps() - velocityOf(dc.impact_other);
-  mt.rebound_speed_mps = std::max(mt.rebound_speed_mps, relative.dot(dc.impact_normal));
+  if (in_contact || dc.in_contact)
+    mt.rebound_speed_mps = std::max(mt.rebound_speed_mps, relative.dot(dc.impact_normal));
+  dc.in_contact = in_contact;
   mt.restitution = mt.impact_speed_mps > 1e-9 ? mt.rebound_speed_mps / mt.impact_speed_mps : 0.0;
   const double separation =
       dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(dc.impact_other)));

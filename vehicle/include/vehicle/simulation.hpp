@@ -108,7 +108,8 @@ struct CrashMetrics {
   /// Closing speed along the impact normal at impact [m/s]: the depth-weighted contact normal over the
   /// first 10 ms of contact with what was hit first, made horizontal when it is mostly so.
   double impact_speed_mps = 0;
-  /// Largest separating speed along that normal afterwards [m/s]; restitution = rebound / impact [-].
+  /// Largest separating speed along that normal while in contact with what was hit and as the car leaves
+  /// it (not what the driver does afterwards) [m/s]; restitution = rebound / impact [-].
   double rebound_speed_mps = 0;
   double restitution = 0;
   /// Permanent crush as crash tests measure it: the intrusion of the struck end's profile at six equally
