@@ -362,7 +362,7 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
   scene.description = top.string("description", "");
   top.string("$schema", "");  // editors' schema hint, ignored
   scene.duration_s = top.number("duration_s", std::nullopt, 1e-3, 1e5);
-  scene.physics_hz = top.number("physics_hz", std::nullopt, 50, 20000);
+  scene.physics_hz = top.number("physics_hz", std::nullopt, 15, 20000);
   scene.gravity_mps2 = top.number("gravity_mps2", 9.81, 0, 100);
   scene.ground = top.boolean("ground", true);
   scene.ground_friction = top.number("ground_friction", 1.0, 0, 10);

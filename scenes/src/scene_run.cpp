@@ -4,6 +4,7 @@
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -107,7 +108,9 @@ std::string timelineCsv(const std::vector<std::string>& columns,
 
 SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
   vehicle::WorldSettings world_settings;
-  world_settings.physics_rate_hz = scene_.physics_hz;
+  physics_substeps_ = static_cast<int>(std::ceil(kMinInternalRate_hz / scene_.physics_hz - 1e-9));
+  physics_substeps_ = std::max(physics_substeps_, 1);
+  world_settings.physics_rate_hz = scene_.physics_hz * physics_substeps_;
   world_settings.gravity_mps2 = {0, 0, -scene_.gravity_mps2};
   world_settings.ground = scene_.ground;
   world_settings.ground_friction = scene_.ground_friction;
@@ -156,17 +159,21 @@ double SceneRun::time_s() const {
 }
 
 uint64_t SceneRun::steps() const {
-  return simulation_->world().stepCount();
+  return simulation_->world().stepCount() / static_cast<uint64_t>(physics_substeps_);
 }
 
 void SceneRun::step() {
   if (finished()) return;
+  for (int k = 0; k < physics_substeps_; ++k) internalStep();
+}
+
+void SceneRun::internalStep() {
   vehicle::World& world = simulation_->world();
   const double dt = world.fixedDt_s();
   for (Car& car : cars_) {
     vehicle::Car& chassis = world.car(car.id);
     chassis.setInput(car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt));
-    if (steps() == 0 && car.lateral_speed_mps != 0) {
+    if (world.stepCount() == 0 && car.lateral_speed_mps != 0) {
       // A sideways start (a car sliding into a pole): one step's push of m dv / dt at the centre of mass.
       const vehicle::Pose body = chassis.bodyPose();
       const Eigen::Vector3d left = body.orientation * Eigen::Vector3d::UnitY();
@@ -187,6 +194,21 @@ void SceneRun::stepUntil(double t_s) {
 
 void SceneRun::runToEnd() {
   while (!finished()) step();
+}
+
+int SceneRun::advance(double dt_s) {
+  if (!(dt_s > 0) || !std::isfinite(dt_s)) {
+    throw deform::InputError("dt_s: a frame must be finite and > 0 s (got " + std::to_string(dt_s) + ")");
+  }
+  frame_time_s_ += dt_s;
+  // Whole steps the frames add up to; the tolerance absorbs the rounding of summed frame times.
+  const auto due = static_cast<uint64_t>(std::floor(frame_time_s_ * scene_.physics_hz + 1e-6));
+  int taken = 0;
+  while (!finished() && steps() < due) {
+    step();
+    ++taken;
+  }
+  return taken;
 }
 
 bool SceneRun::diverged() const {
@@ -246,6 +268,7 @@ nlohmann::json SceneRun::summary() const {
   out["steps"] = steps();
   out["time_s"] = time_s();
   out["physics_hz"] = scene_.physics_hz;
+  out["physics_substeps"] = physics_substeps_;
   out["timing_ms"] = {{"physics", times_.physics_ms},
                       {"deform", times_.deform_ms},
                       {"embed", times_.embed_ms},

@@ -94,7 +94,7 @@ TEST_CASE("values out of range are refused naming file and key path", "[scenes]"
   CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.mass_kg: must be in"));
   doc = minimalScene();
   doc["physics_hz"] = 0;
-  CHECK_THAT(refusal(doc), Catch::Contains("test.json: physics_hz: must be in [50, 20000] (got 0)"));
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: physics_hz: must be in [15, 20000] (got 0)"));
   doc = minimalScene();
   doc["vehicle"]["deformation"] = {{"alpha", 40}};
   CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.alpha: must be in [0.5, 16] (got 40)"));

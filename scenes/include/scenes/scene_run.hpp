@@ -27,6 +27,11 @@ struct StageTimes {
   double total_ms = 0;
 };
 
+/// The crush coupling's force acts one step late; at internal steps longer than 1 / this rate it
+/// created energy (plastic work 10 % above the impact energy at 60 Hz, measured in docs/STABILITY.md), so
+/// a scene's slower physics rate is taken in internal steps of at most this length [Hz].
+inline constexpr double kMinInternalRate_hz = 120.0;
+
 class SceneRun {
  public:
   /// Loads the meshes and builds the world. Throws deform::InputError naming the scene file and key
@@ -51,6 +56,9 @@ class SceneRun {
   uint64_t steps() const;
   /// Fixed steps the whole scene takes: round(duration_s * physics_hz).
   uint64_t totalSteps() const { return total_steps_; }
+  /// Internal simulation steps per scene step: 1 at 120 Hz and above, else the fewest that make each
+  /// internal step at most 1/kMinInternalRate_hz s.
+  int physicsSubsteps() const { return physics_substeps_; }
   bool finished() const { return steps() >= total_steps_; }
 
   /// One physics step with every car's drive inputs (does nothing once finished).
@@ -59,6 +67,11 @@ class SceneRun {
   void stepUntil(double t_s);
   /// Steps to the end of the scene.
   void runToEnd();
+  /// A frame of dt_s from a frame clock (a game loop): takes as many fixed steps as the frames so far
+  /// add up to (fix-your-timestep), so a long frame (a 100 ms hitch) gives the same state as many short
+  /// ones. Returns the steps taken. Throws deform::InputError naming "dt_s" for zero, negative or
+  /// non-finite dt_s.
+  int advance(double dt_s);
 
   /// Physics and deform times so far; embed and render are the caller's to add.
   StageTimes& times() { return times_; }
@@ -84,10 +97,15 @@ class SceneRun {
     double lateral_speed_mps = 0;  ///< pushed in on the first step
   };
   SceneConfig scene_;
+  /// One simulation step with every car's drive inputs.
+  void internalStep();
+
   std::unique_ptr<vehicle::Simulation> simulation_;
   std::vector<Car> cars_;
   std::vector<vehicle::ObstacleId> obstacle_ids_;
   uint64_t total_steps_ = 0;
+  int physics_substeps_ = 1;
+  double frame_time_s_ = 0;  ///< sum of advance()'s frames [s]
   StageTimes times_;
 };
 
