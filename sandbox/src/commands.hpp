@@ -15,6 +15,8 @@ void registerBenchStepCommand(CLI::App& bench);
 void registerMeshRenderCommand(CLI::App& mesh);
 /// `sandbox run` (play a scene: summary, timeline, frames, video), in cmd_run.cpp.
 void registerRunCommand(CLI::App& app);
+/// `sandbox stress` (stability at the extremes), in cmd_stress.cpp.
+void registerStressCommand(CLI::App& app);
 /// `sandbox export` (the damaged car at a time as a mesh), in cmd_export.cpp.
 void registerExportCommand(CLI::App& app);
 

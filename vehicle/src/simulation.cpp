@@ -19,6 +19,18 @@
 namespace vehicle {
 namespace {
 
+// Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.
+bool enclosesWithMargin(const deform::ControlMesh& mesh, const Eigen::Vector3d& point, double margin_m) {
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.points_m[t[0]];
+    const Eigen::Vector3d n = (mesh.points_m[t[1]] - a).cross(mesh.points_m[t[2]] - a);
+    const double length = n.norm();
+    if (!(length > 0)) continue;
+    if ((point - a).dot(n) / length > -margin_m) return false;
+  }
+  return true;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double ms(Clock::duration d) {
@@ -219,8 +231,12 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   // The compliance is given for the reference level of detail. At a fixed compliance the measured crush
   // force grows as N^0.46 with the control points N (more spokes meet the obstacle), so it is scaled by
   // sqrt(N / N_ref) to keep the crush force independent of the level of detail.
+  // It is given for the reference mass too, and scaled by m_ref / m: the body's stiffness grows with the
+  // mass it must stop, so the crash pulse in g (and the crush) is the same for a 1 kg toy and a 40 t
+  // truck. At the reference stiffness a 1 kg car bounced off a wall at 12.7 times its impact speed (the
+  // crush force of one step, acting a step late, reversed it).
   const double per_point =
-      deformation.compliance_m_per_N *
+      deformation.compliance_m_per_N * (kReferenceMass_kg / car.mass_kg) *
       std::sqrt(static_cast<double>(dc->mesh.points_m.size()) / static_cast<double>(kReferenceControlPoints));
   m.spoke_compliance_m_per_N = per_point;
   m.edge_compliance_m_per_N = per_point * deformation.shell_compliance_ratio;
@@ -510,9 +526,15 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   if (dc.settings.coupling == Coupling::Crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed &&
       dc.touching.empty() && report.max_speed_mps < 0.05) {
     const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
-    car.setCollisionHull(deform::buildControlMesh(dc.body->state().positions_m, n, "dented body"));
-    const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
-    world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+    const deform::ControlMesh dented =
+        deform::buildControlMesh(dc.body->state().positions_m, n, "dented body");
+    // A body crushed through its own centre of mass (a small car, a deep dent) keeps its old hull: ODE's
+    // convex geom needs the centre inside (its planes' offsets positive), or it warns and mis-collides.
+    if (enclosesWithMargin(dented, dc.body_settings->core_m, 0.01)) {
+      car.setCollisionHull(dented);
+      const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
+      world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+    }
     dc.hull_dirty = false;
   }
 }

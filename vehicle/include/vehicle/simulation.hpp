@@ -37,6 +37,8 @@ enum class Coupling : uint8_t {
 
 /// The level of detail the material compliances are given for [-] (see compliance_m_per_N).
 inline constexpr std::size_t kReferenceControlPoints = 60;
+/// The vehicle mass the material compliances are given for [kg] (see compliance_m_per_N).
+inline constexpr double kReferenceMass_kg = 1500.0;
 
 /// Per-car deformation settings (scene keys vehicle.deformation.*). The material defaults are the
 /// calibration of docs/CRASH_CALIBRATION.md (the built-in 1500 kg sedan against 56 km/h full-width
@@ -54,9 +56,10 @@ struct DeformationSettings {
   /// Linear hardening: plastic over elastic modulus [-] (crush force rising with crush).
   double hardening = 0.0;
   /// Compliance of the spokes (control point to core), the load path into the chassis, at
-  /// kReferenceControlPoints; with N points every compliance is scaled by sqrt(N / 60), which keeps the
-  /// crush force about independent of the level of detail (measured: at a fixed compliance it grows as
-  /// N^0.46) [m/N].
+  /// kReferenceControlPoints and kReferenceMass_kg; with N points every compliance is scaled by
+  /// sqrt(N / 60), which keeps the crush force about independent of the level of detail (measured: at a
+  /// fixed compliance it grows as N^0.46), and for a car of mass m by 1500 kg / m, which keeps the crash
+  /// pulse in g independent of the mass [m/N].
   double compliance_m_per_N = 7e-7;
   /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
   double shell_compliance_ratio = 12.0;

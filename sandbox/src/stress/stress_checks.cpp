@@ -1,0 +1,57 @@
+#include "stress/stress_checks.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace sandbox {
+namespace {
+
+constexpr double kHuge = 1e10;  // MuJoCo-style divergence bound
+
+bool bounded(const Eigen::Vector3d& v) {
+  return v.allFinite() && v.cwiseAbs().maxCoeff() < kHuge;
+}
+
+}  // namespace
+
+RunVerdict checkRun(const scenes::SceneRun& run) {
+  RunVerdict verdict;
+  const vehicle::Simulation& simulation = run.simulation();
+  for (std::size_t i = 0; i < run.carCount(); ++i) {
+    const vehicle::CarId id = run.carId(i);
+    const vehicle::CrashMetrics m = simulation.metrics(id);
+    const std::string car = run.carCount() > 1 ? "car " + std::to_string(i) + ": " : "";
+    if (m.diverged) verdict.fail(car + "diverged");
+    for (const Eigen::Vector3d& p : simulation.controlPoints(id)) {
+      if (!bounded(p)) {
+        verdict.fail(car + "a control point is not finite or beyond 1e10");
+        break;
+      }
+    }
+    if (!bounded(simulation.world().car(id).vehiclePose().position_m))
+      verdict.fail(car + "chassis not finite");
+    if (m.tunnelled) verdict.fail(car + "tunnelled");
+    const double cap_m = simulation.deformationSettings(id).max_deviation_m;
+    if (!(m.max_deviation_m <= cap_m * (1 + 1e-9)))
+      verdict.fail(car + "deviation beyond the visual constraint");
+    const vehicle::EnergyTerms& e = m.energy;
+    if (simulation.deformationSettings(id).coupling == vehicle::Coupling::Crush && m.impacted) {
+      const double tolerance_J = 0.02 * e.kinetic_initial_J + 1.0;
+      if (e.plastic_work_J > e.crush_work_J + tolerance_J)
+        verdict.fail(car + "plastic work above the crush work");
+      if (std::abs(e.balance_error_J) > tolerance_J)
+        verdict.fail(car + "energy balance off by more than 2 %");
+    }
+    char figures[320];
+    std::snprintf(figures, sizeof figures,
+                  "%simpact %.1f km/h, crush %.3f m (largest %.3f), deviation %.3f of %.2f m, plastic %.3g J "
+                  "of %.3g J, restitution %.2f, penetration %.1f mm",
+                  car.c_str(), 3.6 * m.impact_speed_mps, m.residual_crush_m, m.max_residual_crush_m,
+                  m.max_deviation_m, cap_m, e.plastic_work_J, e.kinetic_initial_J, m.restitution,
+                  1e3 * m.max_penetration_m);
+    verdict.figures += (verdict.figures.empty() ? "" : "; ") + std::string(figures);
+  }
+  return verdict;
+}
+
+}  // namespace sandbox
