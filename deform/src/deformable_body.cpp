@@ -278,4 +278,23 @@ double maxDeviation(const BodySettings& settings, const BodyState& state) {
   return std::sqrt(worst2);
 }
 
+double constraintStrainRms(const BodySettings& settings, const BodyState& state) {
+  double sum2 = 0;
+  std::size_t count = 0;
+  const auto add = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, double rest_m) {
+    if (!(rest_m > 0)) return;
+    const double strain = ((a - b).norm() - rest_m) / rest_m;
+    sum2 += strain * strain;
+    ++count;
+  };
+  const auto& x = state.positions_m;
+  for (std::size_t k = 0; k < settings.edges.size(); ++k)
+    add(x[settings.edges[k].a], x[settings.edges[k].b], state.edge_rest_m[k]);
+  for (std::size_t k = 0; k < settings.spokes.size(); ++k)
+    add(x[settings.spokes[k].point], settings.core_m, state.spoke_rest_m[k]);
+  for (std::size_t k = 0; k < settings.bends.size(); ++k)
+    add(x[settings.bends[k].left], x[settings.bends[k].right], state.bend_rest_m[k]);
+  return count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;
+}
+
 }  // namespace deform

@@ -17,6 +17,8 @@ void registerMeshRenderCommand(CLI::App& mesh);
 void registerRunCommand(CLI::App& app);
 /// `sandbox stress` (stability at the extremes), in cmd_stress.cpp.
 void registerStressCommand(CLI::App& app);
+/// `sandbox tradeoff` (speed against accuracy), in cmd_tradeoff.cpp.
+void registerTradeoffCommand(CLI::App& app);
 /// `sandbox export` (the damaged car at a time as a mesh), in cmd_export.cpp.
 void registerExportCommand(CLI::App& app);
 

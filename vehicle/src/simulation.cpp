@@ -652,6 +652,10 @@ const DeformationSettings& Simulation::deformationSettings(CarId car) const {
   return impl_->of(car).settings;
 }
 
+const deform::DeformableBody& Simulation::body(CarId car) const {
+  return *impl_->of(car).body;
+}
+
 CrashMetrics Simulation::metrics(CarId car) const {
   const DeformableCar& dc = impl_->of(car);
   CrashMetrics out = dc.metrics;

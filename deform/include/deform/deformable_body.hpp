@@ -35,6 +35,11 @@ BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state);
 /// Largest |x - x0| over the control points [m].
 double maxDeviation(const BodySettings& settings, const BodyState& state);
 
+/// The constraint residual: RMS over every edge, spoke and bend of the strain (l - L) / L against the
+/// current rest lengths [-]. A settled body free of contact has none; what is left is an unconverged solve
+/// or stress locked in by the visual constraint.
+double constraintStrainRms(const BodySettings& settings, const BodyState& state);
+
 class DeformableBody {
  public:
   /// Throws InputError for bad solver parameters.

@@ -22,6 +22,7 @@
 
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
+#include <deform/deformable_body.hpp>
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -174,6 +175,8 @@ class Simulation {
   /// The control mesh the body was built from (rest shape, triangles).
   const deform::ControlMesh& controlMesh(CarId car) const;
   const DeformationSettings& deformationSettings(CarId car) const;
+  /// The car's deformable body (settings and state), for measurements.
+  const deform::DeformableBody& body(CarId car) const;
 
   CrashMetrics metrics(CarId car) const;
   StepTimings lastTimings() const;
