@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "step_cost.hpp"
 
 namespace sandbox {
 namespace {
@@ -57,44 +58,18 @@ void runBenchStep(const BenchStepFlags& f) {
   const deform::MassSplit masses = deform::distributeMass(mesh, f.mass_kg);
   const auto settings = std::make_shared<const deform::BodySettings>(
       deform::createBodySettings(mesh, masses, deform::BodyDescription{}));
-  deform::SolverParams params;
-  params.substeps = f.substeps;
-  params.iterations = f.iterations;
-  params.sleep_delay_s = -1;  // measure work, not sleep
-  deform::DeformableBody body(settings, params);
-
-  // A wall across the front, 5 cm into the body: solid where x > front - 0.05.
-  double front_m = -1e300;
-  for (const auto& p : mesh.points_m) front_m = std::max(front_m, p.x());
-  deform::StepInputs inputs;
-  inputs.contacts.push_back(deform::HalfSpaceShape{{-1, 0, 0}, -(front_m - 0.05)});
-  inputs.chassis.gravity_mps2 = {0, 0, -9.81};
-
-  uint32_t contact_points = 0;
-  for (std::size_t k = 0; k < f.warmup; ++k) body.step(inputs, f.dt_s);
-  // Cost as this thread's CPU time (other processes on a shared machine preempt it; wall time is kept too).
-  auto cpu_us = [] {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
-  };
-  std::vector<double> us(f.steps), wall_us(f.steps);
-  for (std::size_t k = 0; k < f.steps; ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = cpu_us();
-    const deform::StepReport report = body.step(inputs, f.dt_s);
-    us[k] = cpu_us() - cpu_start;
-    wall_us[k] = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    contact_points = std::max(contact_points, report.contact_points / f.substeps);
-  }
-  auto median = [](std::vector<double>& v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  const double median_us = median(us);
-  const double median_wall_us = median(wall_us);
+  StepCostOptions options;
+  options.substeps = f.substeps;
+  options.iterations = f.iterations;
+  options.warmup = f.warmup;
+  options.steps = f.steps;
+  options.dt_s = f.dt_s;
+  const StepCost cost = measureStepCost(settings, options);
   const std::size_t constraints = settings->constraintCount();
-  const double ns_per = median_us * 1e3 / (static_cast<double>(constraints) * f.substeps * f.iterations);
+  const uint32_t contact_points = cost.contact_points;
+  const double median_us = cost.us_per_step;
+  const double median_wall_us = cost.wall_us_per_step;
+  const double ns_per = cost.ns_per_constraint_iteration;
 
   nlohmann::ordered_json r;
   r["mesh"] = f.mesh;
@@ -111,7 +86,7 @@ void runBenchStep(const BenchStepFlags& f) {
   r["us_per_step"] = median_us;
   r["wall_us_per_step"] = median_wall_us;
   r["ns_per_constraint_iteration"] = ns_per;
-  r["max_deviation_m"] = deform::maxDeviation(*settings, body.state());
+  r["max_deviation_m"] = cost.max_deviation_m;
   if (f.json) {
     std::printf("%s\n", r.dump(2).c_str());
     return;

@@ -53,6 +53,7 @@ void registerBenchCommands(CLI::App& app) {
   embed->callback([flags] { runEmbed(*flags); });
 
   registerBenchStepCommand(*bench);
+  registerBenchGridCommand(*bench);
 }
 
 }  // namespace sandbox

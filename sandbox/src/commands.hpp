@@ -11,6 +11,8 @@ void registerFiguresCommand(CLI::App& app);
 
 /// `sandbox bench step` (deformation dynamics), in bench_step.cpp.
 void registerBenchStepCommand(CLI::App& bench);
+/// `sandbox bench grid` (vertices against control points), in cmd_bench_grid.cpp.
+void registerBenchGridCommand(CLI::App& bench);
 /// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.
 void registerMeshRenderCommand(CLI::App& mesh);
 /// `sandbox run` (play a scene: summary, timeline, frames, video), in cmd_run.cpp.

@@ -1,0 +1,31 @@
+#pragma once
+// The cost of one step of a deformable body under a contact: a wall pressed 5 cm into the front of the
+// body for every measured step (shared by `bench step`, `bench grid` and the full-resolution baseline).
+#include <deform/body_settings.hpp>
+
+#include <cstdint>
+#include <memory>
+
+namespace sandbox {
+
+struct StepCost {
+  double us_per_step = 0;       ///< median thread CPU time of one step [us]
+  double wall_us_per_step = 0;  ///< median wall time [us]
+  double ns_per_constraint_iteration = 0;
+  uint32_t contact_points = 0;  ///< points against the wall in a substep
+  double max_deviation_m = 0;   ///< at the end [m]
+};
+
+struct StepCostOptions {
+  uint32_t substeps = 4;
+  uint32_t iterations = 1;
+  std::size_t warmup = 20;  ///< steps before measuring (the wall has crushed the front by then)
+  std::size_t steps = 200;  ///< measured steps (the median is reported)
+  double dt_s = 1.0 / 60;
+};
+
+/// Steps a body of `settings` (sleep off) under the wall and times it.
+StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& settings,
+                         const StepCostOptions& options);
+
+}  // namespace sandbox
