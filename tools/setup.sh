@@ -18,6 +18,8 @@ packages=(
   catch2            # tests (v2)
   libbenchmark-dev  # Google Benchmark
   ffmpeg            # MP4 encoding, ffprobe in tests
+  libbullet-dev     # Bullet's soft body: the baseline of bench grid
+  gnuplot-nox       # plots of bench grid and tradeoff
 )
 
 missing=()

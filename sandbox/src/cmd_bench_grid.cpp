@@ -86,6 +86,16 @@ void runGrid(const GridFlags& flags) {
   const std::vector<GridRow> rows = runBenchGrid(options, printRow);
   scenes::writeFileAtomically(flags.out_dir + "/grid.csv", csvText(rows));
   std::printf("wrote %s/grid.csv\n", flags.out_dir.c_str());
+  CsvTable crashes({"speed_kmh", "stable", "finite", "tunnelled", "max_extent_growth", "max_node_speed_mps",
+                    "residual_dent_m", "verdict"});
+  for (const baselines::SoftBodyCrash& c : bulletCrashes(options)) {
+    std::printf("Bullet soft body (60-point control mesh) in wall_crash at %g km/h: %s\n", c.speed_kmh,
+                c.verdict.c_str());
+    crashes.addRow({CsvTable::number(c.speed_kmh), c.stable ? "1" : "0", c.finite ? "1" : "0",
+                    c.tunnelled ? "1" : "0", CsvTable::number(c.max_extent_growth),
+                    CsvTable::number(c.max_node_speed_mps), CsvTable::number(c.residual_dent_m), c.verdict});
+  }
+  scenes::writeFileAtomically(flags.out_dir + "/bullet_crash.csv", crashes.text());
   plot(rows, flags.out_dir);
 }
 

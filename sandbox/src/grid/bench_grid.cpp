@@ -1,5 +1,6 @@
 #include "grid/bench_grid.hpp"
 
+#include "baselines/bullet_soft_body.hpp"
 #include "grid/full_resolution.hpp"
 #include "step_cost.hpp"
 
@@ -54,6 +55,24 @@ double embedPass_ms(const deform::Skin& skin, const std::vector<Eigen::Vector3f>
 }
 
 }  // namespace
+
+deform::Mesh asMesh(const deform::ControlMesh& control) {
+  deform::Mesh mesh;
+  for (const auto& p : control.points_m) mesh.positions_m.push_back(p.cast<float>());
+  mesh.triangles = control.triangles;
+  return mesh;
+}
+
+std::vector<baselines::SoftBodyCrash> bulletCrashes(const GridOptions& options) {
+  const deform::Mesh body = deform::makeSedan(20000).body;
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : body.positions_m) points.push_back(p.cast<double>());
+  const deform::Mesh control = asMesh(deform::buildControlMesh(points, 60, "builtin:sedan"));
+  std::vector<baselines::SoftBodyCrash> out;
+  for (double kmh : options.bullet_crash_speeds_kmh)
+    out.push_back(baselines::bulletWallCrash(control, kMass_kg, kmh, 1.2, 500));
+  return out;
+}
 
 GridOptions GridOptions::quick() {
   GridOptions o;
@@ -115,9 +134,34 @@ std::vector<GridRow> runBenchGrid(const GridOptions& options,
         cell.embed_ms = embedPass_ms(skin, body.positions_m, options.threads);
         emit(cell);
       }
+      if (vertices == options.vertices.front()) {
+        // Bullet's soft body on the same control mesh, as its deformation model (the skin's embedding
+        // would come on top).
+        const baselines::SoftBodyCost bullet = baselines::bulletSoftBodyCost(asMesh(mesh), kMass_kg, 60, 4);
+        GridRow b = row;
+        b.method = "Bullet soft body (control mesh)";
+        b.constraints = bullet.links;
+        b.body_ms = bullet.build_ms;
+        b.step_ms = bullet.ms_per_frame;
+        b.note = bullet.finite ? "" : "not finite";
+        emit(b);
+      }
     }
     if (vertices <= options.full_resolution_max_vertices)
       emit(fullResolutionRow(body, kMass_kg, frameStep(vertices)));
+    if (vertices <= options.bullet_max_vertices) {
+      const baselines::SoftBodyCost bullet =
+          baselines::bulletSoftBodyCost(body, kMass_kg, vertices > 20000 ? 5 : 30, 4);
+      GridRow b;
+      b.method = "Bullet soft body (render mesh)";
+      b.vertices = body.positions_m.size();
+      b.control_points = bullet.nodes;
+      b.constraints = bullet.links;
+      b.body_ms = bullet.build_ms;
+      b.step_ms = bullet.ms_per_frame;
+      b.note = bullet.finite ? "" : "not finite";
+      emit(b);
+    }
   }
   return rows;
 }

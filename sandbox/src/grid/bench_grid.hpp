@@ -2,6 +2,11 @@
 // Render-mesh vertices against control points (DESIGN.md section 6): the built-in sedan at several
 // resolutions against several levels of detail, what each costs to build, to hold and per frame, beside
 // the baselines a user could pick instead (every render vertex simulated; Bullet's soft body).
+#include "baselines/bullet_soft_body.hpp"
+
+#include <deform/control_mesh.hpp>
+#include <deform/mesh.hpp>
+
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -36,8 +41,17 @@ struct GridOptions {
   std::size_t full_resolution_max_vertices = 4000000;
   std::size_t bullet_max_vertices = 100000;
   unsigned threads = 0;  ///< for the embedding pass; 0 = all cores
+  /// wall_crash speeds at which Bullet's soft body (the 60-point control mesh) is checked [km/h].
+  std::vector<double> bullet_crash_speeds_kmh = {56, 250};
   static GridOptions quick();
 };
+
+/// A control mesh as a render-style mesh (float positions, its triangles).
+deform::Mesh asMesh(const deform::ControlMesh& control);
+
+/// Bullet's soft body of the sedan's 60-point control mesh in wall_crash (500 Hz, 1.2 s) at each of
+/// options.bullet_crash_speeds_kmh.
+std::vector<baselines::SoftBodyCrash> bulletCrashes(const GridOptions& options);
 
 /// Measures every cell; `on_row` is called as each row is done (progress).
 std::vector<GridRow> runBenchGrid(const GridOptions& options,
