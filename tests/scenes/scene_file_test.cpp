@@ -136,7 +136,8 @@ TEST_CASE("overrides (--set) change any key and are checked as strictly as the f
   const scenes::SceneConfig scene = scenes::parseScene(doc, "test.json");
   CHECK(scene.vehicles[0].start.speed_kmh == 5);
   CHECK(scene.obstacles[0].size_m.y() == 5);
-  CHECK(scene.vehicles[0].deformation.settings.control_points == 32);
+  CHECK(scene.vehicles[0].deformation.settings.k_nearest == 4);
+  CHECK(scene.vehicles[0].deformation.settings.iterations == 1);
 
   // One past the end appends (an extra obstacle), checked like the rest.
   doc = minimalScene();
