@@ -56,10 +56,6 @@ Played play(const std::string& scene_name, const std::vector<std::string>& overr
   std::vector<scenes::Override> parsed;
   for (const std::string& o : overrides) parsed.push_back(scenes::parseOverride(o));
   const scenes::SceneConfig scene = scenes::loadScene(scene_name, parsed);
-  if (scene.vehicles.size() != 1) {
-    throw deform::InputError(scene.source + ": tradeoff measures one car; this scene has " +
-                             std::to_string(scene.vehicles.size()));
-  }
   scenes::SceneRun run(scene);
   const vehicle::CarId car = run.carId(0);
   vehicle::Simulation& simulation = run.simulation();
@@ -139,6 +135,11 @@ std::vector<TradeoffRow> runTradeoff(const TradeoffOptions& options) {
   std::vector<TradeoffRow> rows;
   for (const std::string& scene : options.scenes) {
     const std::size_t begin = rows.size();
+    const scenes::SceneConfig as_shipped = scenes::loadScene(scene);
+    if (as_shipped.vehicles.size() != 1) {
+      throw deform::InputError(as_shipped.source + ": tradeoff measures one car; this scene has " +
+                               std::to_string(as_shipped.vehicles.size()));
+    }
     std::printf("%s: reference run\n", scene.c_str());
     std::fflush(stdout);
     const Played reference = play(scene, referenceOverrides(options.quick));
