@@ -104,6 +104,11 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
   for (const Material& m : s.materials)
     s.plastic_laws.push_back({m.yield_strain, m.hardening, m.min_rest_fraction, m.max_rest_fraction});
 
+  for (const auto& t : mesh.triangles) {
+    if (t[0] >= n || t[1] >= n || t[2] >= n) throw InputError("control mesh: triangle index out of range");
+  }
+  s.triangles = mesh.triangles;
+
   // Constraint arrays, in mesh order (deterministic).
   for (const ControlEdge& e : mesh.edges) {
     if (e.a >= n || e.b >= n || e.left >= n || e.right >= n)

@@ -176,4 +176,43 @@ void checkContactShape(const ContactShape& shape, const char* field_name) {
       shape);
 }
 
+bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m) {
+  const double length = direction.norm();
+  const Eigen::Vector3d unit = length > 0 ? Eigen::Vector3d(direction / length) : Eigen::Vector3d::UnitZ();
+  if (const auto* sphere = std::get_if<SphereShape>(&shape)) {
+    out_m = sphere->centre_m + sphere->radius_m * unit;
+  } else if (const auto* box = std::get_if<BoxShape>(&shape)) {
+    out_m = box->centre_m;
+    for (int k = 0; k < 3; ++k)
+      out_m += box->axes.col(k) * (box->axes.col(k).dot(unit) >= 0 ? 1.0 : -1.0) * box->half_extents_m[k];
+  } else if (const auto* capsule = std::get_if<CapsuleShape>(&shape)) {
+    out_m = (capsule->a_m.dot(unit) >= capsule->b_m.dot(unit) ? capsule->a_m : capsule->b_m) +
+            capsule->radius_m * unit;
+  } else if (const auto* convex = std::get_if<ConvexSupportShape>(&shape)) {
+    out_m = convex->support(convex->user, unit);
+  } else {
+    return false;  // half-space
+  }
+  return true;
+}
+
+bool boundingSphere(const ContactShape& shape, Eigen::Vector3d& centre_m, double& radius_m) {
+  if (const auto* sphere = std::get_if<SphereShape>(&shape)) {
+    centre_m = sphere->centre_m;
+    radius_m = sphere->radius_m;
+  } else if (const auto* box = std::get_if<BoxShape>(&shape)) {
+    centre_m = box->centre_m;
+    radius_m = box->half_extents_m.norm();
+  } else if (const auto* capsule = std::get_if<CapsuleShape>(&shape)) {
+    centre_m = 0.5 * (capsule->a_m + capsule->b_m);
+    radius_m = 0.5 * (capsule->b_m - capsule->a_m).norm() + capsule->radius_m;
+  } else if (const auto* convex = std::get_if<ConvexSupportShape>(&shape)) {
+    centre_m = convex->centre_m;
+    radius_m = convex->bounding_radius_m;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace deform

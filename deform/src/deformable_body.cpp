@@ -119,16 +119,45 @@ uint32_t DeformableBody::findContacts(const StepInputs& inputs) {
   // the substep stays held by its (inactive until violated) contact instead of sinking in for a substep
   // and being thrown out the next, a jitter.
   contacts_.clear();
+  face_contacts_.clear();
   const auto& x = state_.positions_m;
   Penetration p;
   uint32_t inside = 0;
-  for (const ContactShape& shape : inputs.contacts)
+  for (std::size_t k = 0; k < inputs.contacts.size(); ++k) {
+    const ContactShape& shape = inputs.contacts[k];
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
         contacts_.push_back({i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
       }
+    if (k < inputs.surface_contact.size() && inputs.surface_contact[k]) inside += findFaceContacts(shape);
+  }
   return inside;
+}
+
+uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
+  // A thin obstacle (a pole, a tree, another car's corner) can come through the control surface between
+  // its points, where no point is inside it. Points on the surface between them, each triangle's centroid
+  // and each edge's midpoint, are queried like the control points; one found inside pushes the corners
+  // it lies between out along the obstacle's normal, weighted by its barycentric coordinates.
+  Eigen::Vector3d centre;
+  double radius = 0;
+  if (!boundingSphere(shape, centre, radius)) return 0;  // a half-space meets the points first
+  const BodySettings& settings = *settings_;
+  const auto& x = state_.positions_m;
+  uint32_t found = 0;
+  Penetration p;
+  const auto sample = [&](const std::array<uint32_t, 3>& corners, const Eigen::Vector3d& bary) {
+    const Eigen::Vector3d q = bary[0] * x[corners[0]] + bary[1] * x[corners[1]] + bary[2] * x[corners[2]];
+    if ((q - centre).squaredNorm() > radius * radius) return;  // broad phase
+    if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) return;
+    face_contacts_.push_back({corners, bary, p.normal, q + p.depth_m * p.normal});
+    ++found;
+  };
+  const double third = 1.0 / 3.0;
+  for (const auto& t : settings.triangles) sample(t, Eigen::Vector3d(third, third, third));
+  for (const EdgeConstraint& e : settings.edges) sample({e.a, e.b, e.a}, Eigen::Vector3d(0.5, 0.5, 0.0));
+  return found;
 }
 
 void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& report) {
@@ -197,6 +226,11 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
     }
     for (const ContactPoint& c : contacts_)
       projectContact(x[c.point], previous_m_[c.point], c.normal, c.surface_m, inputs.contact_friction);
+    for (const FaceContact& c : face_contacts_) {
+      const auto& k = c.corners;
+      const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
+      projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
+    }
   }
 
   // The shell stays bolted to the chassis: no rotation of the whole shell about the core.

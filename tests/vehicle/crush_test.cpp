@@ -173,6 +173,37 @@ TEST_CASE("Crush: car to car, both dent from the other's surface", "[crush]") {
   CHECK(front_a < front_b + 2 * DeformationSettings{}.max_deviation_m);
 }
 
+TEST_CASE("Crush: a side impact dents the struck car's flank too", "[crush]") {
+  // scenes/car_to_car.json: the striking front meets the struck car's side between its control points;
+  // before face contacts the struck car took no dent at all (deviation 0, plastic work 0).
+  Simulation sim;
+  CarStart a, b;
+  a.speed_mps = 40 * kKmh;
+  b.speed_mps = 30 * kKmh;
+  b.heading_rad = std::numbers::pi / 2;
+  b.position_m = {9.0, -5.2, 0};
+  const CarId striking = sim.addDeformableCar(sedan(), {}, a, {});
+  const CarId struck = sim.addDeformableCar(sedan(), {}, b, {});
+  sim.run(1.5);
+  const CrashMetrics ma = sim.metrics(striking), mb = sim.metrics(struck);
+  checkSane(ma, 0.05);
+  checkSane(mb, 0.05);
+  INFO("striking: deviation " << ma.max_deviation_m << " m, plastic " << ma.energy.plastic_work_J
+                              << " J; struck: deviation " << mb.max_deviation_m << " m, plastic "
+                              << mb.energy.plastic_work_J << " J");
+  CHECK(ma.max_deviation_m > 0.05);
+  CHECK(mb.max_deviation_m > 0.05);
+  CHECK(mb.energy.plastic_work_J > 500);  // a dent of centimetres in a door, not numerical noise
+  // The struck car's dent is in its flank: the point that moved most lies on its side, not its ends.
+  const auto rest = sim.controlRestPoints(struck);
+  const auto now = sim.controlPoints(struck);
+  std::size_t most = 0;
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    if ((now[i] - rest[i]).norm() > (now[most] - rest[most]).norm()) most = i;
+  CHECK(std::abs(rest[most].y()) > 0.5);
+  CHECK(std::abs(rest[most].x()) < 2.0);
+}
+
 TEST_CASE("Crush: a post dents locally, more narrowly with more control points", "[crush]") {
   double width_coarse = 0, width_fine = 0;
   for (std::size_t n : {150u, 600u}) {

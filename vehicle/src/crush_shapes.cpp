@@ -16,6 +16,7 @@ Eigen::Vector3d SweptShape::support(const void* user, const Eigen::Vector3d& dir
 void CrushShapes::clear() {
   swept_.clear();
   shapes_.clear();
+  surface_.clear();
   exact_.clear();
 }
 
@@ -50,7 +51,7 @@ ObstacleShape postBox(const ObstacleShape& post, const Eigen::Vector3d& sweep_m)
 }  // namespace
 
 void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m,
-                      const Eigen::Vector3d& down_m, bool post) {
+                      const Eigen::Vector3d& down_m, bool post, bool surface) {
   if (post && (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule)) {
     // The extended shape is the box around the post (exact push-out); what is left inside is measured
     // against the post itself.
@@ -71,6 +72,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
   switch (shape.type) {
     case ShapeType::HalfSpace:
       shapes_.push_back(deform::HalfSpaceShape{shape.normal, shape.offset_m});
+      surface_.push_back(surface);
       exact_.push_back(shapes_.back());
       return;
     case ShapeType::Box: {
@@ -93,6 +95,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
         box.centre_m += (a.dot(extension) >= 0 ? 0.5 : -0.5) * extra * a;
       }
       shapes_.push_back(box);
+      surface_.push_back(surface);
       return;
     }
     default: {
@@ -106,6 +109,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
       support.centre_m = interiorPoint(shape) + 0.5 * (sweep_m + down_m);
       support.bounding_radius_m = boundingRadius(shape) + sweep_m.norm() + down_m.norm();
       shapes_.push_back(support);
+      surface_.push_back(surface);
       swept_.push_back(std::move(swept));
       auto plain = std::make_unique<SweptShape>();
       plain->shape = shape;

@@ -31,16 +31,20 @@ class CrushShapes {
   /// standing on it, so a point deep in a wall is never pushed out under it); boxes stay exact primitives
   /// (extended along their axes closest to the extensions), the rest become support shapes. A `post`
   /// (a fixed cylinder or capsule) becomes the box around it facing the sweep (exact push-out, see
-  /// crush_shapes.cpp).
+  /// crush_shapes.cpp). A `surface` obstacle (another car's body) is also met between the control points
+  /// (deform's face contacts, StepInputs::surface_contact).
   void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m, const Eigen::Vector3d& down_m,
-           bool post = false);
+           bool post = false, bool surface = false);
   const std::vector<deform::ContactShape>& shapes() const { return shapes_; }
+  /// One flag per shape: met between the control points too.
+  const std::vector<uint8_t>& surfaceFlags() const { return surface_; }
   /// The same obstacles without the extensions (for measuring what is left inside them).
   const std::vector<deform::ContactShape>& exactShapes() const { return exact_; }
 
  private:
   std::vector<std::unique_ptr<SweptShape>> swept_;  ///< stable addresses for the support pointers
   std::vector<deform::ContactShape> shapes_;
+  std::vector<uint8_t> surface_;  ///< per shapes_ entry
   std::vector<deform::ContactShape> exact_;
 };
 

@@ -366,6 +366,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     ObstacleShape local;
     Eigen::Vector3d sweep, down, travel;
     bool post;
+    bool car;  ///< another car's body: met between the control points too (face contacts)
   };
   std::vector<Moving> moving;
   for (const EntityRef& other : dc.touching) {
@@ -392,12 +393,14 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     if (standsOnGround(world_shape)) down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
     const bool post =
         other.kind == EntityRef::Kind::Obstacle && world.obstacleKind(other.index) == ObstacleKind::Post;
-    dc.shapes.add(local, sweep, down, post);
+    const bool car_body = other.kind == EntityRef::Kind::Car;
+    dc.shapes.add(local, sweep, down, post, car_body);
     // How far the obstacle moved in the vehicle frame during the step (translation) [m].
     const Eigen::Vector3d travel = -(to_vehicle * (car.velocity_mps() - velocityOf(other))) * dt;
-    moving.push_back({local, sweep, down, travel, post});
+    moving.push_back({local, sweep, down, travel, post, car_body});
   }
   inputs.contacts = dc.shapes.shapes();
+  inputs.surface_contact = dc.shapes.surfaceFlags();
 
   // Visual: the contact impulses go to the nearest control points (inverse-distance weights).
   const deform::BodyState& state = dc.body->state();
@@ -453,8 +456,9 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
       for (const Moving& o : moving)
         dc.substep_shapes.add(
             transformShape(o.local, Pose{behind * o.travel, Eigen::Quaterniond::Identity()}), o.sweep, o.down,
-            o.post);
+            o.post, o.car);
       inputs.contacts = dc.substep_shapes.shapes();
+      inputs.surface_contact = dc.substep_shapes.surfaceFlags();
     }
     const deform::StepReport part = dc.body->step(inputs, dt / substeps);
     report.contact_points += part.contact_points;

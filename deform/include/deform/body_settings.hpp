@@ -8,6 +8,7 @@
 #include <deform/mesh.hpp>
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -55,9 +56,12 @@ struct BodySettings {
   std::vector<EdgeConstraint> edges;    ///< hull edges
   std::vector<SpokeConstraint> spokes;  ///< one per control point
   std::vector<BendConstraint> bends;    ///< one per hull edge shared by two triangles and folded enough
-  std::vector<double> edge_rest_m;      ///< original rest lengths L0, one per edge [m]
-  std::vector<double> spoke_rest_m;     ///< original rest lengths L0, one per spoke [m]
-  std::vector<double> bend_rest_m;      ///< original rest lengths L0, one per bend [m]
+  /// The control surface's triangles, outward winding: an obstacle poking through one between its
+  /// corners pushes them in (face contacts).
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<double> edge_rest_m;   ///< original rest lengths L0, one per edge [m]
+  std::vector<double> spoke_rest_m;  ///< original rest lengths L0, one per spoke [m]
+  std::vector<double> bend_rest_m;   ///< original rest lengths L0, one per bend [m]
 
   std::vector<Material> materials;       ///< [0] = the default, then one per region
   std::vector<PlasticLaw> plastic_laws;  ///< the plasticity part of each material, same indexing

@@ -58,6 +58,13 @@ struct Penetration {
 bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
                  double margin_m = 0);
 
+/// The point of `shape` furthest along `direction` (its support point) [m]. False for a half-space,
+/// which has none (it is unbounded); the direction need not be unit.
+bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m);
+
+/// A sphere holding all of `shape` (centre, radius) [m]. False for a half-space.
+bool boundingSphere(const ContactShape& shape, Eigen::Vector3d& centre_m, double& radius_m);
+
 /// The convex hull of a point set (e.g. a jersey barrier's vertices) as a support shape. Owns its
 /// points; the shapes it hands out refer to it, so it must outlive them.
 class ConvexPoints {

@@ -10,6 +10,7 @@
 #include <deform/solver_params.hpp>
 #include <deform/step_inputs.hpp>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -73,6 +74,17 @@ class DeformableBody {
     Eigen::Vector3d surface_m;
   };
 
+  /// A point of the control surface between `corners` (at barycentric `bary`) inside an obstacle: it
+  /// must come out to the plane through `surface_m` with unit `normal` (out of the obstacle).
+  struct FaceContact {
+    std::array<uint32_t, 3> corners;
+    Eigen::Vector3d bary;
+    Eigen::Vector3d normal;
+    Eigen::Vector3d surface_m;
+  };
+  /// Appends the face contacts of one obstacle; returns how many.
+  uint32_t findFaceContacts(const ContactShape& shape);
+
   std::shared_ptr<const BodySettings> settings_;
   SolverParams params_;
   BodyState state_;
@@ -80,6 +92,7 @@ class DeformableBody {
   std::vector<Eigen::Vector3d> previous_m_;
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<ContactPoint> contacts_;
+  std::vector<FaceContact> face_contacts_;
   /// This step's inertial inputs, unscaled: g - a_c [m/s^2], omega [rad/s], alpha [rad/s^2].
   Eigen::Vector3d load_mps2_{0, 0, 0}, omega_radps_{0, 0, 0}, alpha_radps2_{0, 0, 0};
   double radius_m_ = 0;  ///< longest spoke at rest: reach of the angular terms [m]

@@ -26,6 +26,12 @@ struct ChassisMotion {
 
 struct StepInputs {
   std::vector<ContactShape> contacts;  ///< obstacles this step (immovable)
+  /// Per entry of `contacts` (missing entries: 0): when set, the obstacle is also met between the control
+  /// points: points of the control surface (triangle centroids, edge midpoints) found inside it push the
+  /// corners around them out (face contacts). For a broad body such as another car, whose flat front can
+  /// meet this body between its points and would otherwise pass into it; a post is better left to the
+  /// points (it makes a narrow notch between them, as a pole does).
+  std::vector<uint8_t> surface_contact;
   /// Coulomb friction coefficient between the control points and every obstacle [1]; 0 = frictionless.
   /// Off by default: on fine control meshes (thousands of points) pressed against a wall, position-level
   /// friction with one Gauss-Seidel iteration was seen to jitter (an open issue).
