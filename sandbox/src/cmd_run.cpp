@@ -119,9 +119,11 @@ RunResult runScene(const RunOptions& options) {
   applyFlags(options, scene.outputs);
   const scenes::OutputConfig outputs = scene.outputs;
   const bool draw = outputs.frames || outputs.video;
+  // The meshes load (and may be refused) before the output folder is touched: a refused run leaves an
+  // earlier run's files as they were.
+  scenes::SceneRun run(scene);
   const fs::path out = prepareOutput(options.out.empty() ? "out/" + scene.name : options.out, outputs.frames);
 
-  scenes::SceneRun run(scene);
   scenes::StageTimes& times = run.times();
   std::unique_ptr<RunRenderer> renderer;
   std::unique_ptr<render::VideoWriter> video;

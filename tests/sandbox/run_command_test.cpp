@@ -168,6 +168,21 @@ TEST_CASE("a rendered wall crash: car where the camera puts it, heat map red in 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a run refused for its mesh leaves an earlier run's files alone", "[run]") {
+  const fs::path dir = freshDir("sandbox_run_refused");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out" / "video.mp4") << "an earlier run's video";
+  std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 4 0 0\nv 4 2 0\nv 0 2 0\nf 1 2 3\nf 1 3 4\n";
+  sandbox::RunOptions options;
+  options.scene = "wall_crash";
+  options.progress = false;
+  options.out = (dir / "out").string();
+  options.sets = {"vehicle.mesh=" + (dir / "flat.obj").string()};
+  CHECK_THROWS_WITH(sandbox::runScene(options), Catch::Contains("flat.obj"));
+  CHECK(fs::exists(dir / "out" / "video.mp4"));
+  CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
+}
+
 TEST_CASE("sandbox export writes the damaged car as GLB and OBJ that read back", "[run]") {
   const fs::path dir = freshDir("sandbox_export");
   for (const char* name : {"car.glb", "car.obj"}) {
