@@ -165,6 +165,35 @@ TEST_CASE("a rendered wall crash: car where the camera puts it, heat map red in 
               front_red, front, rear_blue, rear);
   CHECK(front_red > front * 8 / 10);
   CHECK(rear_blue > rear * 9 / 10);
+
+  // And in the rendered picture: the most displaced vertex is drawn red, the rear quarter blue.
+  const sandbox::render::Image after = renderer.frame(run, times);
+  const vehicle::Pose pose_after = run.simulation().world().car(run.carId(0)).vehiclePose();
+  std::size_t most = 0;
+  for (std::size_t j = 0; j < body.positions_m.size(); ++j) {
+    if ((body.positions_m[j] - run.model(0).body.positions_m[j]).squaredNorm() >
+        (body.positions_m[most] - run.model(0).body.positions_m[most]).squaredNorm())
+      most = j;
+  }
+  const auto pixelsLike = [&](const Eigen::Vector3d& vehicle_point, bool want_red) {
+    const Eigen::Vector3f p = sandbox::render::projectToPixel(
+        sandbox::sceneCamera(run), pose_after.toWorld(vehicle_point).cast<float>(), 320, 180);
+    std::size_t like = 0;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int px = static_cast<int>(p.x()) + dx, py = static_cast<int>(p.y()) + dy;
+        if (px < 0 || px >= 320 || py < 0 || py >= 180) continue;
+        const std::size_t at = (static_cast<std::size_t>(py) * 320 + static_cast<std::size_t>(px)) * 4;
+        const int r = after.rgba[at], g = after.rgba[at + 1], b = after.rgba[at + 2];
+        like += want_red ? (r > b + 60 && r > g + 30) : (b > r + 60 && b > g + 20);
+      }
+    }
+    return like;
+  };
+  CHECK(pixelsLike(body.positions_m[most].cast<double>(), true) >= 3);
+  const Eigen::Vector3d rear_side{box.min_m.x() + 0.6, box.min_m.y() + 0.05,
+                                  0.5 * (box.min_m.z() + box.max_m.z())};
+  CHECK(pixelsLike(rear_side, false) >= 3);
   fs::remove_all(dir);
 }
 
