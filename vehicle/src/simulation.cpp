@@ -55,7 +55,12 @@ double kineticEnergy(const Car& car) {
 bool crushable(const World& world, EntityRef e) {
   if (e.kind == EntityRef::Kind::Car) return true;
   const ObstacleKind kind = world.obstacleKind(e.index);
-  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
+  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
+}
+
+/// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
+bool vegetation(const World& world, EntityRef e) {
+  return e.kind == EntityRef::Kind::Obstacle && world.obstacleKind(e.index) == ObstacleKind::Vegetation;
 }
 
 /// An obstacle standing on the ground: its lowest point within 5 cm of z = 0 and, for a post or a box, an
@@ -402,12 +407,15 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   inputs.contacts = dc.shapes.shapes();
   inputs.surface_contact = dc.shapes.surfaceFlags();
 
-  // Visual: the contact impulses go to the nearest control points (inverse-distance weights).
+  // Visual (and vegetation in either coupling): the contact impulses go to the nearest control points
+  // (inverse-distance weights).
   const deform::BodyState& state = dc.body->state();
-  if (dc.settings.coupling == Coupling::Visual && dc.settings.visual_impulse_scale > 0) {
+  if (dc.settings.visual_impulse_scale > 0) {
     constexpr std::size_t kNearest = 4;
+    const bool visual = dc.settings.coupling == Coupling::Visual;
     for (const CarContact& c : contacts) {
-      if (!crushable(world, c.other) || c.impulse_N_s.squaredNorm() == 0) continue;
+      const bool dents = (visual && crushable(world, c.other)) || vegetation(world, c.other);
+      if (!dents || c.impulse_N_s.squaredNorm() == 0) continue;
       std::vector<std::pair<double, uint32_t>> near;
       for (uint32_t p = 0; p < state.positions_m.size(); ++p)
         near.emplace_back((state.positions_m[p] - c.point_m).norm(), p);

@@ -173,12 +173,13 @@ struct World::Impl {
     if (kind == kCarKind && crush_allowance_m[index] > 0) return GeomRole::SoftHull;
     return GeomRole::Plain;
   }
-  /// Anything but the ground and ramps.
+  /// Anything but the ground, ramps and vegetation (a light, thin tree is pushed over by the hull's rigid
+  /// contact: between the control points it would otherwise pass into the car unresisted).
   bool crushable(dGeomID geom) const {
     const EntityRef e = entityOf(geom);
     if (e.kind == EntityRef::Kind::Car) return true;
     const ObstacleKind kind = obstacles[e.index].kind;
-    return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
+    return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
   }
 
   ObstacleId addObstacle(ObstacleEntry entry) {
