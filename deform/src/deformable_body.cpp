@@ -125,21 +125,27 @@ uint32_t DeformableBody::findContacts(const StepInputs& inputs) {
   uint32_t inside = 0;
   for (std::size_t k = 0; k < inputs.contacts.size(); ++k) {
     const ContactShape& shape = inputs.contacts[k];
+    const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
+    if (surface) touched_.assign(x.size(), 0);
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
         contacts_.push_back({i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
+        if (surface && p.depth_m > 0) touched_[i] = 1;
       }
-    if (k < inputs.surface_contact.size() && inputs.surface_contact[k]) inside += findFaceContacts(shape);
+    if (surface) inside += findFaceContacts(shape);
   }
   return inside;
 }
 
 uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
-  // A thin obstacle (a pole, a tree, another car's corner) can come through the control surface between
-  // its points, where no point is inside it. Points on the surface between them, each triangle's centroid
-  // and each edge's midpoint, are queried like the control points; one found inside pushes the corners
-  // it lies between out along the obstacle's normal, weighted by its barycentric coordinates.
+  // A thin obstacle (a bollard, another car's corner) can come through the control surface between its
+  // points, where no point is inside it. Points on each triangle, a grid at most kFaceSampleSpacing_m
+  // apart, are queried like the control points; one found inside pushes the triangle's corners out along
+  // the obstacle's normal, weighted by its barycentric coordinates. Not next to a control point the
+  // obstacle already holds: that point makes the dent (a pole's narrow notch).
+  constexpr double kFaceSampleSpacing_m = 0.1;
+  constexpr int kMostSamplesPerEdge = 8;
   Eigen::Vector3d centre;
   double radius = 0;
   if (!boundingSphere(shape, centre, radius)) return 0;  // a half-space meets the points first
@@ -147,16 +153,30 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
   const auto& x = state_.positions_m;
   uint32_t found = 0;
   Penetration p;
-  const auto sample = [&](const std::array<uint32_t, 3>& corners, const Eigen::Vector3d& bary) {
-    const Eigen::Vector3d q = bary[0] * x[corners[0]] + bary[1] * x[corners[1]] + bary[2] * x[corners[2]];
-    if ((q - centre).squaredNorm() > radius * radius) return;  // broad phase
-    if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) return;
-    face_contacts_.push_back({corners, bary, p.normal, q + p.depth_m * p.normal});
-    ++found;
-  };
-  const double third = 1.0 / 3.0;
-  for (const auto& t : settings.triangles) sample(t, Eigen::Vector3d(third, third, third));
-  for (const EdgeConstraint& e : settings.edges) sample({e.a, e.b, e.a}, Eigen::Vector3d(0.5, 0.5, 0.0));
+  for (const auto& t : settings.triangles) {
+    if (touched_[t[0]] || touched_[t[1]] || touched_[t[2]]) continue;
+    const Eigen::Vector3d& a = x[t[0]];
+    const Eigen::Vector3d& b = x[t[1]];
+    const Eigen::Vector3d& c = x[t[2]];
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    const double reach =
+        std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
+    if ((g - centre).norm() > radius + reach) continue;  // broad phase: the spheres do not meet
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int k =
+        std::clamp(static_cast<int>(std::ceil(longest / kFaceSampleSpacing_m)), 2, kMostSamplesPerEdge);
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; i + j <= k; ++j) {
+        if (i == k || j == k || i + j == 0) continue;  // the corners are control points themselves
+        const Eigen::Vector3d bary(static_cast<double>(i) / k, static_cast<double>(j) / k,
+                                   static_cast<double>(k - i - j) / k);
+        const Eigen::Vector3d q = bary[0] * a + bary[1] * b + bary[2] * c;
+        if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) continue;
+        face_contacts_.push_back({t, bary, p.normal, q + p.depth_m * p.normal});
+        ++found;
+      }
+    }
+  }
   return found;
 }
 

@@ -56,7 +56,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
     // The extended shape is the box around the post (exact push-out); what is left inside is measured
     // against the post itself.
     const std::size_t exact_before = exact_.size();
-    add(postBox(shape, sweep_m), sweep_m, down_m, false);
+    add(postBox(shape, sweep_m), sweep_m, down_m, false, surface);
     exact_.resize(exact_before);
     auto plain = std::make_unique<SweptShape>();
     plain->shape = shape;

@@ -398,6 +398,10 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     if (standsOnGround(world_shape)) down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
     const bool post =
         other.kind == EntityRef::Kind::Obstacle && world.obstacleKind(other.index) == ObstacleKind::Post;
+    // Another car's body is met between the control points too (face contacts): its front falling
+    // between this body's points would otherwise pass into it. Posts are left to the points: with face
+    // contacts a pole's dent spread over the whole front (a 150-point car at 30 km/h) instead of the narrow
+    // notch a pole makes; at coarse levels of detail a thin post can still slip between the points.
     const bool car_body = other.kind == EntityRef::Kind::Car;
     dc.shapes.add(local, sweep, down, post, car_body);
     // How far the obstacle moved in the vehicle frame during the step (translation) [m].

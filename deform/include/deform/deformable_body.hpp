@@ -93,6 +93,7 @@ class DeformableBody {
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
+  std::vector<uint8_t> touched_;  ///< per point: in contact with the obstacle being searched
   /// This step's inertial inputs, unscaled: g - a_c [m/s^2], omega [rad/s], alpha [rad/s^2].
   Eigen::Vector3d load_mps2_{0, 0, 0}, omega_radps_{0, 0, 0}, alpha_radps2_{0, 0, 0};
   double radius_m_ = 0;  ///< longest spoke at rest: reach of the angular terms [m]
