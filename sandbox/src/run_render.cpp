@@ -118,6 +118,13 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
     const vehicle::CarId id = run.carId(i);
     car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, simulation.controlRestPoints(id),
                                                  simulation.deformationSettings(id));
+    for (const vehicle::WheelSettings& w : simulation.world().car(id).wheelSettings())
+      car.hub_rest_m.push_back(w.centre_m.cast<float>());
+    if (!car.hub_rest_m.empty()) {
+      const vehicle::DeformationSettings& d = simulation.deformationSettings(id);
+      car.hub_skin = deform::Skin::build(car.hub_rest_m, simulation.controlRestPoints(id),
+                                         deform::SkinOptions{d.alpha, d.k_nearest, 1});
+    }
     const double diagonal = deform::boundingBox(run.model(i).body).diagonal_m();
     car.full_scale_m =
         static_cast<float>(outputs.heatmap_full_scale_m > 0 ? outputs.heatmap_full_scale_m : 0.06 * diagonal);
@@ -175,9 +182,23 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
                                                                     mesh.positions_m, car.full_scale_m));
       }
     }
-    renderer_->setTransform(car.body, matrixOf(chassis.vehiclePose()));
+    const vehicle::Pose vehicle_pose = chassis.vehiclePose();
+    renderer_->setTransform(car.body, matrixOf(vehicle_pose));
+    // Hubs moved with the bodywork around them, in the ground plane of the car (the suspension keeps
+    // their height).
+    std::vector<Eigen::Vector3f> hubs = car.hub_rest_m;
+    if (!hubs.empty()) {
+      const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(run.carId(i));
+      car.hub_skin.deform(car.hub_rest_m.data(), displacements.data(), hubs.data(), 1);
+    }
     for (std::size_t w = 0; w < car.wheels.size() && w < chassis.wheels().size(); ++w) {
-      renderer_->setTransform(car.wheels[w], matrixOf(chassis.wheelPose(w)));
+      vehicle::Pose wheel = chassis.wheelPose(w);
+      if (w < hubs.size()) {
+        Eigen::Vector3d shift = (hubs[w] - car.hub_rest_m[w]).cast<double>();
+        shift.z() = 0;
+        wheel.position_m += vehicle_pose.orientation * shift;
+      }
+      renderer_->setTransform(car.wheels[w], matrixOf(wheel));
     }
   }
   for (const ObstacleMesh& o : obstacles_)

@@ -3,6 +3,8 @@
 // displacement for the heat map; its wheels turning, steering and riding the suspension), the
 // obstacles where the world has them now, from the scene's camera.
 #include <scenes/car_skin.hpp>
+
+#include <deform/skin.hpp>
 #include <scenes/scene_run.hpp>
 
 #include <memory>
@@ -36,6 +38,10 @@ class RunRenderer {
     render::Renderer::MeshId body = 0;
     std::vector<render::Renderer::MeshId> wheels;
     std::unique_ptr<scenes::CarSkin> skin;
+    /// The wheel centres (vehicle frame) embedded like render vertices: a crushed front carries its
+    /// wheels back with it instead of leaving them standing out of the bodywork.
+    deform::Skin hub_skin;
+    std::vector<Eigen::Vector3f> hub_rest_m;
     float full_scale_m = 0.25f;
   };
   struct ObstacleMesh {
