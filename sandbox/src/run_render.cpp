@@ -186,18 +186,13 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
     renderer_->setTransform(car.body, matrixOf(vehicle_pose));
     // Hubs moved with the bodywork around them, in the ground plane of the car (the suspension keeps
     // their height).
-    std::vector<Eigen::Vector3f> hubs = car.hub_rest_m;
-    if (!hubs.empty()) {
-      const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(run.carId(i));
-      car.hub_skin.deform(car.hub_rest_m.data(), displacements.data(), hubs.data(), 1);
-    }
+    const std::vector<Eigen::Vector3d> shifts =
+        car.hub_rest_m.empty()
+            ? std::vector<Eigen::Vector3d>{}
+            : embeddedShifts_m(car.hub_skin, car.hub_rest_m, simulation.controlDisplacements(run.carId(i)));
     for (std::size_t w = 0; w < car.wheels.size() && w < chassis.wheels().size(); ++w) {
       vehicle::Pose wheel = chassis.wheelPose(w);
-      if (w < hubs.size()) {
-        Eigen::Vector3d shift = (hubs[w] - car.hub_rest_m[w]).cast<double>();
-        shift.z() = 0;
-        wheel.position_m += vehicle_pose.orientation * shift;
-      }
+      if (w < shifts.size()) wheel.position_m += vehicle_pose.orientation * shifts[w];
       renderer_->setTransform(car.wheels[w], matrixOf(wheel));
     }
   }
@@ -206,6 +201,20 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   render::Image image = renderer_->renderImage(sceneCamera(run), environment_);
   times.render_ms += msSince(start);
   return image;
+}
+
+std::vector<Eigen::Vector3d> embeddedShifts_m(const deform::Skin& skin,
+                                              const std::vector<Eigen::Vector3f>& points_m,
+                                              const std::vector<Eigen::Vector3d>& displacements_m) {
+  std::vector<Eigen::Vector3f> moved(points_m.size());
+  skin.deform(points_m.data(), displacements_m.data(), moved.data(), 1);
+  std::vector<Eigen::Vector3d> shifts;
+  for (std::size_t k = 0; k < points_m.size(); ++k) {
+    Eigen::Vector3d shift = (moved[k] - points_m[k]).cast<double>();
+    shift.z() = 0;  // the suspension keeps the hub's height
+    shifts.push_back(shift);
+  }
+  return shifts;
 }
 
 deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car) {

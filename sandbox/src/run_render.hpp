@@ -56,6 +56,12 @@ class RunRenderer {
 };
 
 /// The car's body deformed as it is now (vehicle frame), without rendering: for `sandbox export`.
+/// How far the bodywork around each of `points_m` (vehicle frame, embedded in the control points by
+/// `skin`) moved in the car's ground plane [m]: wheel hubs carried back by a crushed front.
+std::vector<Eigen::Vector3d> embeddedShifts_m(const deform::Skin& skin,
+                                              const std::vector<Eigen::Vector3f>& points_m,
+                                              const std::vector<Eigen::Vector3d>& displacements_m);
+
 deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car);
 
 }  // namespace sandbox

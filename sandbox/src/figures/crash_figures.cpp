@@ -13,13 +13,16 @@
 #include "render/renderer.hpp"
 #include "render/vehicle_meshes.hpp"
 
+#include "run_render.hpp"
+
 namespace sandbox::figures {
 namespace {
 
 struct DentedCar {
-  deform::VehicleModel model;            ///< the car as loaded, undamaged
-  deform::Mesh dented;                   ///< its body after the scene (vehicle frame)
-  std::vector<Eigen::Vector3f> colours;  ///< permanent displacement, blue none .. red most
+  deform::VehicleModel model;                    ///< the car as loaded, undamaged
+  deform::Mesh dented;                           ///< its body after the scene (vehicle frame)
+  std::vector<deform::WheelPart> dented_wheels;  ///< its wheels, carried with the bodywork around them
+  std::vector<Eigen::Vector3f> colours;          ///< permanent displacement, blue none .. red most
   vehicle::CrashMetrics metrics;
   std::size_t control_points = 0;
 };
@@ -37,6 +40,17 @@ DentedCar playAndDent(const std::string& scene, const std::vector<std::string>& 
   DentedCar car;
   car.model = run.model(0);
   car.dented = skin.mesh();
+  // The wheels carried with the bodywork around them (as in the crash videos).
+  std::vector<Eigen::Vector3f> hubs;
+  for (const auto& w : car.model.wheels) hubs.push_back(w.centre_m.cast<float>());
+  car.dented_wheels = car.model.wheels;
+  if (!hubs.empty()) {
+    const vehicle::DeformationSettings& d = sim.deformationSettings(id);
+    const deform::Skin hub_skin =
+        deform::Skin::build(hubs, sim.controlRestPoints(id), deform::SkinOptions{d.alpha, d.k_nearest, 1});
+    const auto shifts = embeddedShifts_m(hub_skin, hubs, sim.controlDisplacements(id));
+    for (std::size_t k = 0; k < shifts.size(); ++k) car.dented_wheels[k].centre_m += shifts[k];
+  }
   car.colours = deform::displacementColours(skin.restPositions(), car.dented.positions_m);
   car.metrics = sim.metrics(id);
   car.control_points = sim.controlRestPoints(id).size();
@@ -53,6 +67,7 @@ std::vector<render::Image> views(const DentedCar& car, const FigureOptions& o,
   render::Renderer renderer(settings);
   deform::VehicleModel dented = car.model;
   dented.body = car.dented;
+  dented.wheels = car.dented_wheels;
   const auto meshes = render::vehicleMeshes(dented, {0.75f, 0.08f, 0.06f});
   const auto body = renderer.addMesh(meshes.front());
   for (std::size_t i = 1; i < meshes.size(); ++i) renderer.addMesh(meshes[i]);
