@@ -8,6 +8,7 @@
 
 #include <deform/heat_colours.hpp>
 #include <deform/mesh_import.hpp>
+#include <deform/skin.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -195,6 +196,29 @@ TEST_CASE("a rendered wall crash: car where the camera puts it, heat map red in 
                                   0.5 * (box.min_m.z() + box.max_m.z())};
   CHECK(pixelsLike(rear_side, false) >= 3);
   fs::remove_all(dir);
+}
+
+TEST_CASE("after the wall crash the front wheels are carried back with the crushed front", "[run]") {
+  scenes::SceneRun run(scenes::loadScene("wall_crash"));
+  run.runToEnd();
+  const auto& sim = run.simulation();
+  const vehicle::CarId id = run.carId(0);
+  std::vector<Eigen::Vector3f> hubs;
+  for (const auto& w : run.model(0).wheels) hubs.push_back(w.centre_m.cast<float>());
+  REQUIRE(hubs.size() == 4);
+  const auto& d = sim.deformationSettings(id);
+  const deform::Skin skin = deform::Skin::build(hubs, sim.controlRestPoints(id), {d.alpha, d.k_nearest, 1});
+  const std::vector<Eigen::Vector3d> shifts =
+      sandbox::embeddedShifts_m(skin, hubs, sim.controlDisplacements(id));
+  for (std::size_t w = 0; w < hubs.size(); ++w) {
+    INFO("wheel at x " << hubs[w].x() << ": shift " << shifts[w].transpose());
+    CHECK(shifts[w].z() == 0);  // the suspension keeps the height
+    if (hubs[w].x() > 0) {
+      CHECK(shifts[w].x() < -0.02);  // the front ones go back with the crush (3-4 cm here) ...
+    } else {
+      CHECK(std::abs(shifts[w].x()) < 0.02);  // ... the rear ones stay
+    }
+  }
 }
 
 TEST_CASE("a run refused for its mesh leaves an earlier run's files alone", "[run]") {
