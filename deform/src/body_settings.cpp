@@ -2,7 +2,9 @@
 #include <deform/body_settings.hpp>
 #include <deform/error.hpp>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -18,6 +20,18 @@ uint32_t materialOf(const std::array<uint32_t, N>& points, const std::vector<std
     if (all) return static_cast<uint32_t>(r + 1);
   }
   return 0;
+}
+
+/// Compliance [m/N] of a constraint of stiffness `stiffness_N_per_m`; a constraint without stiffness is
+/// given a compliance so large that it carries no load (XPBD has no infinite compliance).
+double complianceOf(double stiffness_N_per_m) {
+  constexpr double kSlack_m_per_N = 1e3;
+  return stiffness_N_per_m > 1.0 / kSlack_m_per_N ? 1.0 / stiffness_N_per_m : kSlack_m_per_N;
+}
+
+/// Area of the triangle (a, b, c) [m^2].
+double area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
 }
 
 void checkDeviation(double value, const std::string& field) {
@@ -102,39 +116,101 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     s.max_deviation_m[p] = radius;
   }
   for (const Material& m : s.materials)
-    s.plastic_laws.push_back({m.yield_strain, m.hardening, m.min_rest_fraction, m.max_rest_fraction});
+    s.plastic_laws.push_back({m.hardening, m.min_rest_fraction, m.max_rest_fraction});
 
   for (const auto& t : mesh.triangles) {
     if (t[0] >= n || t[1] >= n || t[2] >= n) throw InputError("control mesh: triangle index out of range");
   }
   s.triangles = mesh.triangles;
 
+  // Tributary areas: a third of each triangle's area (as a vector, along its outward normal) to each of
+  // its corners.
+  s.tributary_area_m2.assign(n, 0.0);
+  std::vector<Eigen::Vector3d> vector_area(n, Eigen::Vector3d::Zero());
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.points_m[t[0]];
+    const Eigen::Vector3d third =
+        (mesh.points_m[t[1]] - a).cross(mesh.points_m[t[2]] - a) / 6.0;  // area vector / 3
+    for (uint32_t corner : t) vector_area[corner] += third;
+  }
   // Constraint arrays, in mesh order (deterministic).
   for (const ControlEdge& e : mesh.edges) {
     if (e.a >= n || e.b >= n || e.left >= n || e.right >= n)
       throw InputError("control mesh: edge index out of range");
+    const Eigen::Vector3d& pa = mesh.points_m[e.a];
+    const Eigen::Vector3d& pb = mesh.points_m[e.b];
+    const Eigen::Vector3d& pl = mesh.points_m[e.left];
+    const Eigen::Vector3d& pr = mesh.points_m[e.right];
+    const double length = (pa - pb).norm();
+    const double wings_area = area(pa, pb, pl) + (e.left == e.right ? 0.0 : area(pb, pa, pr));
+    // A membrane strip (Van Gelder 1998): k = E t (A_left + A_right) / L^2; it yields at the membrane
+    // force per unit width times the strip's width, (A_left + A_right) / L.
     const uint32_t edge_material = materialOf<2>({e.a, e.b}, in_region);
-    s.edges.push_back({e.a, e.b, edge_material, s.materials[edge_material].edge_compliance_m_per_N});
-    s.edge_rest_m.push_back((mesh.points_m[e.a] - mesh.points_m[e.b]).norm());
+    const Material& em = s.materials[edge_material];
+    const double safe_length = std::max(length, kMinConstraintLength_m);
+    const double edge_stiffness = em.shell_stiffness_N_per_m * wings_area / (safe_length * safe_length);
+    const double edge_compliance = complianceOf(edge_stiffness);
+    const double strip_width_m = wings_area / safe_length;
+    s.edges.push_back({e.a, e.b, edge_material, edge_compliance});
+    s.edge_rest_m.push_back(length);
+    s.edge_yield.push_back({em.shell_tension_yield_N_per_m * strip_width_m * edge_compliance,
+                            em.shell_compression_yield_N_per_m * strip_width_m * edge_compliance});
     if (e.left == e.right) continue;  // an open edge has no bend
     // A bend across a nearly flat hinge adds no first-order bending stiffness (its gradient lies in the
     // plane the edges already hold) but makes the four points a flat tetrahedron with all six distances
     // fixed: ill-conditioned, it jitters under Gauss-Seidel. Such hinges get no bend.
-    const Eigen::Vector3d& pa = mesh.points_m[e.a];
-    const Eigen::Vector3d& pb = mesh.points_m[e.b];
-    const Eigen::Vector3d n1 = (pb - pa).cross(mesh.points_m[e.left] - pa);
-    const Eigen::Vector3d n2 = (pa - pb).cross(mesh.points_m[e.right] - pb);
+    const Eigen::Vector3d n1 = (pb - pa).cross(pl - pa);
+    const Eigen::Vector3d n2 = (pa - pb).cross(pr - pb);
     const double fold_rad = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
     if (!(fold_rad >= description.min_bend_fold_rad)) continue;
+    // Hinge stiffness k_theta = 6 D |e|^2 / (A_left + A_right) (Grinspun et al. 2003, "Discrete Shells":
+    // W = k_B (theta - theta0)^2 3 |e|^2 / A_e), taken to the wing distance d: with the wings' distances
+    // h_l, h_r from the hinge line and the dihedral angle phi = pi - fold, dd/dphi = h_l h_r sin(phi) / d,
+    // so the distance stiffness is k_theta / (dd/dphi)^2 and the plastic moment m_p |e| is the force
+    // m_p |e| / (dd/dphi).
+    const Eigen::Vector3d axis = (pb - pa) / safe_length;
+    const Eigen::Vector3d ql = pl - pa, qr = pr - pa;
+    const double h_left = (ql - ql.dot(axis) * axis).norm();
+    const double h_right = (qr - qr.dot(axis) * axis).norm();
+    const double wing_distance = (pl - pr).norm();
+    const double lever_m =
+        h_left * h_right * std::sin(fold_rad) / std::max(wing_distance, kMinConstraintLength_m);
     const uint32_t bend_material = materialOf<4>({e.a, e.b, e.left, e.right}, in_region);
-    s.bends.push_back(
-        {e.left, e.right, e.a, e.b, bend_material, s.materials[bend_material].bend_compliance_m_per_N});
-    s.bend_rest_m.push_back((mesh.points_m[e.left] - mesh.points_m[e.right]).norm());
+    const Material& bm = s.materials[bend_material];
+    const double hinge_stiffness_N_m = 6.0 * bm.shell_bending_stiffness_N_m * length * length / wings_area;
+    const double bend_stiffness = lever_m > 0 ? hinge_stiffness_N_m / (lever_m * lever_m) : 0.0;
+    const double bend_compliance = complianceOf(bend_stiffness);
+    const double bend_yield_m =
+        lever_m > 0 ? bm.shell_yield_moment_N * length / lever_m * bend_compliance : 0.0;
+    s.bends.push_back({e.left, e.right, e.a, e.b, bend_material, bend_compliance});
+    s.bend_rest_m.push_back(wing_distance);
+    s.bend_yield.push_back({bend_yield_m, bend_yield_m});
   }
   for (uint32_t i = 0; i < n; ++i) {
+    // A column of the crushable structure behind the point's patch of skin, along the patch's normal
+    // n = a / |a| (a: its vector area) from the point to the foot of the core on that line, as wide as
+    // the patch seen along it, |a|: it yields at crush_strength |a| after the strain crush_yield_strain,
+    // so k = strength |a| / (e_y L0). A flat obstacle pressing along d then meets strength x (a . d)
+    // summed over the points it pushes: the pressure on the area it covers, at any N.
     const uint32_t material = materialOf<1>({i}, in_region);
-    s.spokes.push_back({i, material, s.materials[material].spoke_compliance_m_per_N});
-    s.spoke_rest_m.push_back((mesh.points_m[i] - s.core_m).norm());
+    const Material& m = s.materials[material];
+    const Eigen::Vector3d& p = mesh.points_m[i];
+    const double area_m2 = vector_area[i].norm();
+    Eigen::Vector3d anchor = s.core_m;
+    if (area_m2 > 0) {
+      const Eigen::Vector3d normal = vector_area[i] / area_m2;
+      const double depth_m = normal.dot(p - s.core_m);  // > 0: the core is behind the patch
+      if (depth_m > 0) anchor = p - depth_m * normal;
+    }
+    s.tributary_area_m2[i] = area_m2;
+    const double length = (p - anchor).norm();
+    const double yield_force_N = m.crush_strength_Pa * area_m2;
+    const double yield_m = m.crush_yield_strain * length;
+    const double compliance = complianceOf(yield_m > 0 ? yield_force_N / yield_m : 0.0);
+    s.spokes.push_back({i, material, compliance});
+    s.spoke_rest_m.push_back(length);
+    s.spoke_anchor_m.push_back(anchor - s.core_m);
+    s.spoke_yield.push_back({yield_force_N * compliance, yield_force_N * compliance});
   }
   return s;
 }

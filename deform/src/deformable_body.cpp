@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 namespace deform {
 namespace {
@@ -66,6 +68,11 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   }
   for (std::size_t k = 0; k < inputs.contacts.size(); ++k)
     checkContactShape(inputs.contacts[k], ("contacts[" + std::to_string(k) + "]").c_str());
+  for (std::size_t k = 0; k < inputs.contact_velocity_mps.size(); ++k)
+    if (!inputs.contact_velocity_mps[k].allFinite())
+      throw InputError("contact_velocity_mps[" + std::to_string(k) + "]: not finite");
+  if (std::isnan(inputs.core_mass_kg) || !(inputs.core_mass_kg > 0))
+    throw InputError("core_mass_kg: must be > 0 (infinite: a kinematic core)");
   if (!std::isfinite(inputs.contact_friction) || inputs.contact_friction < 0)
     throw InputError("contact_friction: must be finite and >= 0 (got " +
                      std::to_string(inputs.contact_friction) + ")");
@@ -93,9 +100,24 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   for (const PointImpulse& impulse : inputs.impulses)
     state_.velocities_mps[impulse.point] += impulse.impulse_Ns * settings.inverse_mass_per_kg[impulse.point];
 
-  const double h = dt_s / static_cast<double>(params_.substeps);
-  for (uint32_t k = 0; k < params_.substeps; ++k) substep(h, inputs, report);
+  core_inverse_mass_per_kg_ = std::isfinite(inputs.core_mass_kg) ? 1.0 / inputs.core_mass_kg : 0.0;
+  core_shift_m_.setZero();
+  core_velocity_mps_.setZero();
+  const uint32_t substeps = params_.substeps;
+  const double h = dt_s / static_cast<double>(substeps);
+  for (uint32_t k = 1; k <= substeps; ++k) {
+    placeObstacles(inputs, static_cast<double>(substeps - k) * h);
+    substep(h, placed_, inputs, report);
+  }
   state_.time_s += dt_s;
+  // Re-centre on the core: positions and velocities stay relative to it; the caller moves its rigid body.
+  report.core_displacement_m = core_shift_m_;
+  report.core_velocity_mps = core_velocity_mps_;
+  if (core_inverse_mass_per_kg_ > 0)
+    for (std::size_t i = 0; i < settings.pointCount(); ++i) {
+      state_.positions_m[i] -= core_shift_m_;
+      state_.velocities_mps[i] -= core_velocity_mps_;
+    }
 
   // Sleep bookkeeping.
   double max_speed2 = 0;
@@ -114,7 +136,40 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   return report;
 }
 
-uint32_t DeformableBody::findContacts(const StepInputs& inputs) {
+Eigen::Vector3d DeformableBody::ShiftedSupport::support(const void* user, const Eigen::Vector3d& direction) {
+  const auto& self = *static_cast<const ShiftedSupport*>(user);
+  return self.shape.support(self.shape.user, direction) + self.offset_m;
+}
+
+void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
+  const std::size_t count = inputs.contacts.size();
+  placed_.assign(inputs.contacts.begin(), inputs.contacts.end());
+  shifted_.resize(count);  // never reallocated while placed_ points into it: sized before use
+  for (std::size_t k = 0; k < count && k < inputs.contact_velocity_mps.size(); ++k) {
+    const Eigen::Vector3d offset = -behind_s * inputs.contact_velocity_mps[k];
+    if (offset.squaredNorm() == 0) continue;
+    std::visit(
+        [&](auto& shape) {
+          using T = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<T, HalfSpaceShape>) {
+            shape.offset_m += shape.normal.dot(offset);
+          } else if constexpr (std::is_same_v<T, CapsuleShape>) {
+            shape.a_m += offset;
+            shape.b_m += offset;
+          } else if constexpr (std::is_same_v<T, ConvexSupportShape>) {
+            shifted_[k] = {shape, offset};
+            shape.support = &ShiftedSupport::support;
+            shape.user = &shifted_[k];
+            shape.centre_m += offset;
+          } else {
+            shape.centre_m += offset;
+          }
+        },
+        placed_[k]);
+  }
+}
+
+uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs) {
   // Points inside an obstacle or within the margin of it: a point resting on a surface at the start of
   // the substep stays held by its (inactive until violated) contact instead of sinking in for a substep
   // and being thrown out the next, a jitter.
@@ -123,22 +178,22 @@ uint32_t DeformableBody::findContacts(const StepInputs& inputs) {
   const auto& x = state_.positions_m;
   Penetration p;
   uint32_t inside = 0;
-  for (std::size_t k = 0; k < inputs.contacts.size(); ++k) {
-    const ContactShape& shape = inputs.contacts[k];
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    const ContactShape& shape = shapes[k];
     const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
     if (surface) touched_.assign(x.size(), 0);
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
-        contacts_.push_back({i, p.normal, x[i] + p.depth_m * p.normal});
+        contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
         if (surface && p.depth_m > 0) touched_[i] = 1;
       }
-    if (surface) inside += findFaceContacts(shape);
+    if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k));
   }
   return inside;
 }
 
-uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
+uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {
   // A thin obstacle (a bollard, another car's corner) can come through the control surface between its
   // points, where no point is inside it. Points on each triangle, a grid at most kFaceSampleSpacing_m
   // apart, are queried like the control points; one found inside pushes the triangle's corners out along
@@ -162,6 +217,30 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
     const double reach =
         std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
     if ((g - centre).norm() > radius + reach) continue;  // broad phase: the spheres do not meet
+    // The obstacle's point deepest into the body across this face (its support point along the inward
+    // normal): when it lies behind the face and over it, the obstacle has poked through between the
+    // corners, however thin it is (a post narrower than the sample spacing is still met). The samples
+    // below still run: for a broad obstacle the support point is a corner, at the edge of its push.
+    const Eigen::Vector3d outward = (b - a).cross(c - a);
+    const double twice_area = outward.norm();
+    if (twice_area > 0) {
+      const Eigen::Vector3d normal = outward / twice_area;
+      Eigen::Vector3d deepest;
+      if (supportPoint(shape, -normal, deepest) && normal.dot(deepest - a) < 0) {
+        const Eigen::Vector3d q = deepest - normal.dot(deepest - a) * normal;  // over it, on the face
+        const double wa = (b - q).cross(c - q).dot(normal) / twice_area;
+        const double wb = (c - q).cross(a - q).dot(normal) / twice_area;
+        const double wc = 1.0 - wa - wb;
+        if (wa >= 0 && wb >= 0 && wc >= 0 && penetration(shape, q, p, 0.0) && p.depth_m > 0) {
+          // The face goes in by the intrusion, but never further than the obstacle's own push-out from
+          // that spot: a broad obstacle (another car) has its support point far behind the face.
+          const double intrusion_m = std::min(-normal.dot(deepest - a), p.depth_m);
+          face_contacts_.push_back(
+              {shape_index, t, Eigen::Vector3d(wa, wb, wc), -normal, q - intrusion_m * normal});
+          ++found;
+        }
+      }
+    }
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const int k =
         std::clamp(static_cast<int>(std::ceil(longest / kFaceSampleSpacing_m)), 2, kMostSamplesPerEdge);
@@ -172,7 +251,7 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
                                    static_cast<double>(k - i - j) / k);
         const Eigen::Vector3d q = bary[0] * a + bary[1] * b + bary[2] * c;
         if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) continue;
-        face_contacts_.push_back({t, bary, p.normal, q + p.depth_m * p.normal});
+        face_contacts_.push_back({shape_index, t, bary, p.normal, q + p.depth_m * p.normal});
         ++found;
       }
     }
@@ -180,15 +259,23 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape) {
   return found;
 }
 
-void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& report) {
+void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, const StepInputs& inputs,
+                             StepReport& report) {
   const BodySettings& settings = *settings_;
   const std::size_t n = settings.pointCount();
   auto& x = state_.positions_m;
   auto& v = state_.velocities_mps;
   const auto& w = settings.inverse_mass_per_kg;
-  const Eigen::Vector3d core = settings.core_m;
+  const auto& m = settings.mass_kg;
+  const double w_core = core_inverse_mass_per_kg_;
+  const double inv_h = 1.0 / h;
+  // The core inside the substep: at core_m + shift, moving at core_velocity (relative to its kinematic
+  // path). Every correction that ties a point to it pushes it back (momentum exchanged, `to_core`).
+  Eigen::Vector3d core = settings.core_m + core_shift_m_;
+  Eigen::Vector3d to_core_Ns{0, 0, 0};
 
-  // Prediction: exact viscous decay, explicit velocity update with the inertial forces, then positions.
+  // Prediction: exact viscous decay of the motion relative to the core (its reaction on the core),
+  // explicit velocity update with the inertial forces, then positions.
   const double scale = params_.inertial_scale;
   const double decay = std::exp(-params_.damping_per_s * h);
   const bool inertial = scale > 0 && (load_mps2_.squaredNorm() > 0 || omega_radps_.squaredNorm() > 0 ||
@@ -197,7 +284,10 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
     previous_m_[i] = x[i];
     // Drag first, then the load: at rest (v = 0) the full load acts, so damping leaves the static
     // equilibrium where the compliance alone puts it.
-    Eigen::Vector3d vi = v[i] * decay;
+    const Eigen::Vector3d relative = v[i] - core_velocity_mps_;
+    Eigen::Vector3d vi = core_velocity_mps_ + relative * decay;
+    report.damping_loss_J += 0.5 * m[i] * relative.squaredNorm() * (1.0 - decay * decay);
+    to_core_Ns += m[i] * (v[i] - vi);
     if (inertial) {
       const Eigen::Vector3d r = x[i] - core;
       const Eigen::Vector3d a = load_mps2_ - alpha_radps2_.cross(r) -
@@ -212,14 +302,17 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
     if (travel2 > cap * cap) travel *= cap / std::sqrt(travel2);
     x[i] += travel;
   }
+  core_velocity_mps_ += w_core * to_core_Ns;
+  const Eigen::Vector3d core_start = core;
+  core += h * core_velocity_mps_;
 
-  report.contact_points += findContacts(inputs);
+  report.contact_points += findContacts(shapes, inputs);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
   std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);
   std::fill(spoke_lambda_.begin(), spoke_lambda_.end(), 0.0);
   std::fill(bend_lambda_.begin(), bend_lambda_.end(), 0.0);
-  const double inv_h2 = 1.0 / (h * h);
+  const double inv_h2 = inv_h * inv_h;
   const std::size_t edge_count = settings.edges.size(), spoke_count = settings.spokes.size(),
                     bend_count = settings.bends.size();
   const EdgeConstraint* edges = settings.edges.data();
@@ -228,6 +321,18 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
   const double* edge_rest = state_.edge_rest_m.data();
   const double* spoke_rest = state_.spoke_rest_m.data();
   const double* bend_rest = state_.bend_rest_m.data();
+  const Eigen::Vector3d* anchors = settings.spoke_anchor_m.data();
+  Eigen::Vector3d spoke_twist{0, 0, 0};    // sum of anchor x m_i dx_i: the spokes' moment on the points
+  Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
+  Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
+  contact_shift_m_.assign(n, Eigen::Vector3d::Zero());
+  contact_velocity_.assign(n, Eigen::Vector3d::Zero());
+  // A correction by obstacle `shape` of point `i` (its momentum x h, and what moved it, for the energy).
+  auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
+    contact_push += m[i] * dx;
+    contact_shift_m_[i] += dx;
+    if (shape < inputs.contact_velocity_mps.size()) contact_velocity_[i] = inputs.contact_velocity_mps[shape];
+  };
   for (uint32_t it = 0; it < params_.iterations; ++it) {
     for (std::size_t k = 0; k < edge_count; ++k) {
       const EdgeConstraint& c = edges[k];
@@ -236,67 +341,120 @@ void DeformableBody::substep(double h, const StepInputs& inputs, StepReport& rep
     }
     for (std::size_t k = 0; k < spoke_count; ++k) {
       const SpokeConstraint& c = spokes[k];
-      projectSpoke(x[c.point], core, w[c.point], spoke_rest[k], c.compliance_m_per_N * inv_h2,
+      const Eigen::Vector3d before = x[c.point];
+      Eigen::Vector3d anchor = core + anchors[k];
+      projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
                    spoke_lambda_[k]);
+      core = anchor - anchors[k];
+      const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
+      spoke_pull_Ns += pull;
+      spoke_twist += anchors[k].cross(pull);
     }
     for (std::size_t k = 0; k < bend_count; ++k) {
       const BendConstraint& c = bends[k];
       projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k],
                       c.compliance_m_per_N * inv_h2, bend_lambda_[k]);
     }
-    for (const ContactPoint& c : contacts_)
+    for (const ContactPoint& c : contacts_) {
+      const Eigen::Vector3d before = x[c.point];
       projectContact(x[c.point], previous_m_[c.point], c.normal, c.surface_m, inputs.contact_friction);
+      movedBy(c.shape, c.point, x[c.point] - before);
+    }
     for (const FaceContact& c : face_contacts_) {
       const auto& k = c.corners;
       const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
+      const Eigen::Vector3d before[3] = {x[k[0]], x[k[1]], x[k[2]]};
       projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
+      for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) movedBy(c.shape, k[j], x[k[j]] - before[j]);
     }
   }
+  Eigen::Vector3d tie_push{0, 0, 0};  // sum of m_i dx_i by the shell orientation and visual constraints
 
-  // The shell stays bolted to the chassis: no rotation of the whole shell about the core.
-  removeShellRotation(x.data(), settings.rest_positions_m.data(), settings.mass_kg.data(), n, core,
-                      settings.shell_inverse_inertia);
+  // The shell stays bolted to the chassis: no rotation of the whole shell about the core
+  // (removeShellRotation, on the displacements from the rest shape carried along with the core).
+  const Eigen::Vector3d shift = core - settings.core_m;
+  {
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d r = settings.rest_positions_m[i] - settings.core_m;
+      g += m[i] * r.cross(x[i] - shift - settings.rest_positions_m[i]);
+    }
+    const Eigen::Vector3d mu = -(settings.shell_inverse_inertia * g);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d dx = mu.cross(settings.rest_positions_m[i] - settings.core_m);
+      x[i] += dx;
+      tie_push += m[i] * dx;
+    }
+    // The shell took the angular impulse A mu / h = -g / h about the core; the core takes the opposite.
+    report.core_angular_impulse_Nms += g * inv_h;
+    // The spokes pull at their anchors, off the core: the moment of their reaction on it.
+    report.core_angular_impulse_Nms -= spoke_twist * inv_h;
+  }
 
   // Visual constraint, the last projection of the substep (Kenwright 2015, "Visual Constraints").
-  for (std::size_t i = 0; i < n; ++i)
-    projectVisual(x[i], settings.rest_positions_m[i], settings.max_deviation_m[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d before = x[i];
+    if (projectVisual(x[i], settings.rest_positions_m[i] + shift, settings.max_deviation_m[i]))
+      tie_push += m[i] * (x[i] - before);
+  }
+  // Their reactions move the core too (the spokes' already did, inside projectSpoke).
+  core -= w_core * tie_push;
 
-  plasticity(report);
+  plasticity(report, core, h);
 
   // Velocities from positions (Verlet style; XPBD Algorithm 1, line 16).
-  const double inv_h = 1.0 / h;
   for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
+  // The contacts' work: impulse J = m dx / h against the obstacle's velocity (relative to the core).
+  for (std::size_t i = 0; i < n; ++i) {
+    if (contact_shift_m_[i].squaredNorm() == 0) continue;
+    const Eigen::Vector3d impulse = m[i] * contact_shift_m_[i] * inv_h;
+    const Eigen::Vector3d obstacle = contact_velocity_[i] - core_velocity_mps_;
+    report.contact_work_J += impulse.dot(obstacle);
+  }
+  core_velocity_mps_ = (core - core_start) * inv_h;
+  core_shift_m_ = core - settings.core_m;
+  to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;
+  report.core_impulse_Ns += to_core_Ns;
+  report.contact_impulse_Ns += contact_push * inv_h;
 }
 
-void DeformableBody::plasticity(StepReport& report) {
+void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h) {
   const BodySettings& settings = *settings_;
   const auto& x = state_.positions_m;
   const auto& laws = settings.plastic_laws;
   double work_J = 0;
-  // One constraint: new rest length by the return map; the plastic work is the force that remains after
-  // the flow (the yield force, |l - L'| / alpha) times the flow |dL| (the 1D sigma_y d eps_p). A rigid
-  // constraint (alpha = 0) stores no elastic energy and has no defined yield force: its flow is counted
-  // at zero work.
-  auto flow = [&](double length, double& rest, double original, uint32_t material, double compliance) {
-    const double moved = plasticRestLength(length, rest, original, laws[material]);
+  // One constraint: new rest length by the return map; the plastic work is the force the constraint
+  // carried times the flow |dL| (the 1D sigma_y d eps_p). That force is what the solver applied this
+  // substep, |lambda| / h^2 (XPBD eq. 18: a stiff constraint the iterations did not converge carries less
+  // than its elastic formula says), and never more than the yield force left after the flow,
+  // |l - L'| / alpha.
+  const double inv_h2 = 1.0 / (h * h);
+  auto flow = [&](double length, double& rest, double original, const YieldLimits& yield, uint32_t material,
+                  double compliance, double lambda) {
+    const double moved = plasticRestLength(length, rest, original, yield, laws[material]);
     if (moved == rest) return;
-    if (compliance > 0) work_J += std::abs(length - moved) / compliance * std::abs(moved - rest);
+    // A rigid constraint (alpha = 0) has no defined yield force: its flow is counted at zero work.
+    if (compliance > 0) {
+      const double force_N = std::min(std::abs(lambda) * inv_h2, std::abs(length - moved) / compliance);
+      work_J += force_N * std::abs(moved - rest);
+    }
     rest = moved;
   };
   for (std::size_t k = 0; k < settings.edges.size(); ++k) {
     const EdgeConstraint& c = settings.edges[k];
-    flow((x[c.a] - x[c.b]).norm(), state_.edge_rest_m[k], settings.edge_rest_m[k], c.material,
-         c.compliance_m_per_N);
+    flow((x[c.a] - x[c.b]).norm(), state_.edge_rest_m[k], settings.edge_rest_m[k], settings.edge_yield[k],
+         c.material, c.compliance_m_per_N, edge_lambda_[k]);
   }
   for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
     const SpokeConstraint& c = settings.spokes[k];
-    flow((x[c.point] - settings.core_m).norm(), state_.spoke_rest_m[k], settings.spoke_rest_m[k], c.material,
-         c.compliance_m_per_N);
+    flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
+         settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
+         spoke_lambda_[k]);
   }
   for (std::size_t k = 0; k < settings.bends.size(); ++k) {
     const BendConstraint& c = settings.bends[k];
-    flow((x[c.left] - x[c.right]).norm(), state_.bend_rest_m[k], settings.bend_rest_m[k], c.material,
-         c.compliance_m_per_N);
+    flow((x[c.left] - x[c.right]).norm(), state_.bend_rest_m[k], settings.bend_rest_m[k],
+         settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k]);
   }
   state_.plastic_work_J += work_J;
   report.plastic_work_J += work_J;
@@ -316,7 +474,8 @@ BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state) {
   }
   for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
     const auto& c = settings.spokes[k];
-    elastic((x[c.point] - settings.core_m).norm() - state.spoke_rest_m[k], c.compliance_m_per_N);
+    elastic((x[c.point] - settings.core_m - settings.spoke_anchor_m[k]).norm() - state.spoke_rest_m[k],
+            c.compliance_m_per_N);
   }
   for (std::size_t k = 0; k < settings.bends.size(); ++k) {
     const auto& c = settings.bends[k];
@@ -345,7 +504,7 @@ double constraintStrainRms(const BodySettings& settings, const BodyState& state)
   for (std::size_t k = 0; k < settings.edges.size(); ++k)
     add(x[settings.edges[k].a], x[settings.edges[k].b], state.edge_rest_m[k]);
   for (std::size_t k = 0; k < settings.spokes.size(); ++k)
-    add(x[settings.spokes[k].point], settings.core_m, state.spoke_rest_m[k]);
+    add(x[settings.spokes[k].point], settings.core_m + settings.spoke_anchor_m[k], state.spoke_rest_m[k]);
   for (std::size_t k = 0; k < settings.bends.size(); ++k)
     add(x[settings.bends[k].left], x[settings.bends[k].right], state.bend_rest_m[k]);
   return count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;

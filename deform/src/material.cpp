@@ -14,13 +14,21 @@ void requireNonNegative(double value, const std::string& field) {
     throw InputError(field + ": must be finite and >= 0 (got " + std::to_string(value) + ")");
 }
 
+void requirePositive(double value, const std::string& field) {
+  if (!std::isfinite(value) || value <= 0)
+    throw InputError(field + ": must be finite and > 0 (got " + std::to_string(value) + ")");
+}
+
 }  // namespace
 
 void checkMaterial(const Material& material, const std::string& field) {
-  requireNonNegative(material.edge_compliance_m_per_N, field + ".edge_compliance_m_per_N");
-  requireNonNegative(material.spoke_compliance_m_per_N, field + ".spoke_compliance_m_per_N");
-  requireNonNegative(material.bend_compliance_m_per_N, field + ".bend_compliance_m_per_N");
-  requireNonNegative(material.yield_strain, field + ".yield_strain");
+  requireNonNegative(material.crush_strength_Pa, field + ".crush_strength_Pa");
+  requirePositive(material.crush_yield_strain, field + ".crush_yield_strain");
+  requirePositive(material.shell_stiffness_N_per_m, field + ".shell_stiffness_N_per_m");
+  requireNonNegative(material.shell_tension_yield_N_per_m, field + ".shell_tension_yield_N_per_m");
+  requireNonNegative(material.shell_compression_yield_N_per_m, field + ".shell_compression_yield_N_per_m");
+  requireNonNegative(material.shell_bending_stiffness_N_m, field + ".shell_bending_stiffness_N_m");
+  requireNonNegative(material.shell_yield_moment_N, field + ".shell_yield_moment_N");
   requireNonNegative(material.hardening, field + ".hardening");
   if (!(material.min_rest_fraction > 0 && material.min_rest_fraction <= 1))
     throw InputError(field + ".min_rest_fraction: must be in (0, 1] (got " +

@@ -75,10 +75,19 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
     s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
     s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);
-    s.yield_strain = object->number("yield_strain", s.yield_strain, 0, 1);
-    s.hardening = object->number("hardening", s.hardening, 0, 100);
-    s.compliance_m_per_N = object->number("compliance_m_per_N", s.compliance_m_per_N, 1e-12, 1);
-    s.shell_compliance_ratio = object->number("shell_compliance_ratio", s.shell_compliance_ratio, 1e-3, 1e3);
+    deform::Material& m = s.material;
+    m.crush_strength_Pa = object->number("crush_strength_Pa", m.crush_strength_Pa, 0, 1e9);
+    m.crush_yield_strain = object->number("crush_yield_strain", m.crush_yield_strain, 1e-6, 1);
+    m.shell_stiffness_N_per_m = object->number("shell_stiffness_N_per_m", m.shell_stiffness_N_per_m, 1, 1e12);
+    m.shell_tension_yield_N_per_m =
+        object->number("shell_tension_yield_N_per_m", m.shell_tension_yield_N_per_m, 0, 1e10);
+    m.shell_compression_yield_N_per_m =
+        object->number("shell_compression_yield_N_per_m", m.shell_compression_yield_N_per_m, 0, 1e10);
+    m.shell_bending_stiffness_N_m =
+        object->number("shell_bending_stiffness_N_m", m.shell_bending_stiffness_N_m, 0, 1e9);
+    m.shell_yield_moment_N = object->number("shell_yield_moment_N", m.shell_yield_moment_N, 0, 1e9);
+    m.hardening = object->number("hardening", m.hardening, 0, 100);
+    s.shell_mass_fraction = object->number("shell_mass_fraction", s.shell_mass_fraction, 1e-3, 1);
     s.damping = object->number("damping", s.damping, 0, 1000);
     s.contact_friction = object->number("contact_friction", s.contact_friction, 0, 10);
     s.crush_allowance_m = object->number("crush_allowance_m", s.crush_allowance_m, 0, 10);

@@ -81,6 +81,11 @@ bool standsOnGround(const ObstacleShape& shape) {
 
 }  // namespace
 
+deform::Material DeformationSettings::sedanMaterial() {
+  deform::Material m;  // the deform defaults are the sedan's calibration (docs/CRASH_CALIBRATION.md)
+  return m;
+}
+
 void checkDeformationSettings(const DeformationSettings& s) {
   require(s.control_points >= 4 && s.control_points <= 5000, "control_points", "must be in [4, 5000]",
           static_cast<double>(s.control_points));
@@ -89,14 +94,7 @@ void checkDeformationSettings(const DeformationSettings& s) {
   require(s.iterations >= 1 && s.iterations <= 1000, "iterations", "must be in [1, 1000]", s.iterations);
   require(std::isfinite(s.max_deviation_m) && s.max_deviation_m > 0, "max_deviation_m",
           "must be finite and positive", s.max_deviation_m);
-  require(std::isfinite(s.yield_strain) && s.yield_strain >= 0, "yield_strain", "must be finite and >= 0",
-          s.yield_strain);
-  require(std::isfinite(s.hardening) && s.hardening >= 0, "hardening", "must be finite and >= 0",
-          s.hardening);
-  require(std::isfinite(s.compliance_m_per_N) && s.compliance_m_per_N > 0, "compliance_m_per_N",
-          "must be finite and positive", s.compliance_m_per_N);
-  require(std::isfinite(s.shell_compliance_ratio) && s.shell_compliance_ratio > 0, "shell_compliance_ratio",
-          "must be finite and positive", s.shell_compliance_ratio);
+  deform::checkMaterial(s.material, "vehicle.deformation.material");
   require(std::isfinite(s.shell_mass_fraction) && s.shell_mass_fraction > 0 && s.shell_mass_fraction <= 1,
           "shell_mass_fraction", "must be in (0, 1]", s.shell_mass_fraction);
   require(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0", s.damping);
@@ -125,13 +123,8 @@ struct DeformableCar {
   ObstacleShape world_shape;
 
   // Coupling.
-  bool force_pending = false;
-  Eigen::Vector3d force_N{0, 0, 0};  ///< crush force for the next step (world) [N]
-  Eigen::Vector3d force_point_m{0, 0, 0};
-  Eigen::Vector3d extra_force_N{0, 0, 0};  ///< the energy-debt charge, through the centre of mass (world) [N]
-  std::vector<EntityRef> force_others;     ///< free bodies that take the reaction
-  bool hull_dirty = false;                 ///< dented since the collision hull was last rebuilt
-  int quiet_steps = 0;                     ///< steps without a control point in contact
+  bool hull_dirty = false;  ///< dented since the collision hull was last rebuilt
+  int quiet_steps = 0;      ///< steps without a control point in contact
   Eigen::Vector3d previous_velocity_mps{0, 0, 0};
   double previous_kinetic_J = 0;
 
@@ -148,10 +141,12 @@ struct DeformableCar {
   bool in_contact = false;  ///< in contact with what it hit first, last step (the rebound's window)
   double plastic_at_impact_J = 0;
   double plastic_before_step_J = 0;
-  /// Energy the body took in (plastic work, change of its elastic and kinetic energy) that the crush
-  /// force has not yet taken from the chassis [J].
-  double energy_debt_J = 0;
-  double step_crush_work_J = 0;  ///< work the crush force took from the chassis this step [J]
+  double body_energy_at_impact_J = 0;  ///< elastic + kinetic energy in the body at impact [J]
+  double damping_loss_J = 0;           ///< the body's viscous loss since the start [J]
+  double damping_at_impact_J = 0;
+  double contact_work_J = 0;  ///< deform's, since the start [J]
+  double contact_work_at_impact_J = 0;
+  double step_crush_work_J = 0;  ///< kinetic energy the body's reaction took from the chassis this step [J]
   double step_other_work_J = 0;  ///< work every other force took from it this step [J]
 };
 
@@ -232,27 +227,12 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   const deform::MassSplit masses =
       deform::distributeMass(dc->mesh, car.mass_kg * deformation.shell_mass_fraction);
   deform::BodyDescription description;
-  deform::Material& m = description.material;
-  // The compliance is given for the reference level of detail. At a fixed compliance the measured crush
-  // force grows as N^0.46 with the control points N (more spokes meet the obstacle), so it is scaled by
-  // sqrt(N / N_ref) to keep the crush force independent of the level of detail.
-  // It is given for the reference mass too, and scaled by m_ref / m: the body's stiffness grows with the
-  // mass it must stop, so the crash pulse in g (and the crush) is the same for a 1 kg toy and a 40 t
-  // truck. At the reference stiffness a 1 kg car bounced off a wall at 12.7 times its impact speed (the
-  // crush force of one step, acting a step late, reversed it).
-  const double per_point =
-      deformation.compliance_m_per_N * (kReferenceMass_kg / car.mass_kg) *
-      std::sqrt(static_cast<double>(dc->mesh.points_m.size()) / static_cast<double>(kReferenceControlPoints));
-  m.spoke_compliance_m_per_N = per_point;
-  m.edge_compliance_m_per_N = per_point * deformation.shell_compliance_ratio;
-  m.bend_compliance_m_per_N = per_point * deformation.shell_compliance_ratio;
-  m.yield_strain = deformation.yield_strain;
-  m.hardening = deformation.hardening;
+  description.material = deformation.material;
   description.max_deviation_m = deformation.max_deviation_m;
   dc->body_settings =
       std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
   deform::SolverParams params;
-  params.substeps = 1;  // the substeps are taken one deform step each (Impl::stepCar)
+  params.substeps = static_cast<uint32_t>(deformation.substeps);
   params.iterations = static_cast<uint32_t>(deformation.iterations);
   params.damping_per_s = deformation.damping;
   params.inertial_scale = deformation.inertial_scale;
@@ -285,22 +265,6 @@ void Simulation::step() {
     velocity_before.push_back(car.velocity_mps());
     omega_before.push_back(car.angularVelocity_rad_s());
     kinetic_before.push_back(kineticEnergy(car));
-    if (!dc->force_pending) continue;
-    // The energy-debt charge only ever slows the car: never more than would stop its closing motion now
-    // (the backstop or another contact may have stopped it since the charge was planned).
-    const double extra_N = dc->extra_force_N.norm();
-    if (extra_N > 0) {
-      const double closing_mps = std::max(0.0, -car.velocity_mps().dot(dc->extra_force_N / extra_N));
-      const double stop_N = car.mass_kg() * closing_mps / m.world.fixedDt_s();
-      if (extra_N > stop_N) dc->extra_force_N *= stop_N / extra_N;
-    }
-    m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->force_N, dc->force_point_m);
-    m.world.addForce({EntityRef::Kind::Car, dc->id}, dc->extra_force_N, car.bodyPose().position_m);
-    for (const EntityRef& other : dc->force_others) {
-      const bool other_deforms = other.kind == EntityRef::Kind::Car && other.index < m.index_of.size() &&
-                                 m.index_of[other.index] >= 0;
-      if (!other_deforms) m.world.addForce(other, -(dc->force_N + dc->extra_force_N), dc->force_point_m);
-    }
   }
   m.world.step();
   const auto t1 = Clock::now();
@@ -318,12 +282,6 @@ void Simulation::step() {
     auto pointVelocity = [&](const Eigen::Vector3d& p) {
       return Eigen::Vector3d(v_mid + w_mid.cross(p - com));
     };
-    dc.step_crush_work_J = 0;
-    if (dc.force_pending) {
-      dc.step_crush_work_J =
-          -(dc.force_N.dot(pointVelocity(dc.force_point_m)) + dc.extra_force_N.dot(v_mid)) * dt;
-      dc.energy_debt_J = std::max(0.0, dc.energy_debt_J - dc.step_crush_work_J);
-    }
     double taken_J = 0;  // by everything else
     for (const WheelState& w : car.wheels())
       if (w.in_contact) taken_J -= w.force_N.dot(pointVelocity(w.contact_point_m)) * dt;
@@ -356,6 +314,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   const Eigen::Quaterniond to_vehicle = frame.orientation.conjugate();
   const double dt = world.fixedDt_s();
   const std::vector<CarContact> contacts = world.carContacts(dc.id);
+  const bool crush = dc.settings.coupling == Coupling::Crush;
 
   // What the car touches (not the ground, not ramps), each once.
   dc.touching.clear();
@@ -364,19 +323,15 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
         std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
       dc.touching.push_back(c.other);
 
+  // The obstacles where they are at the end of the step (vehicle frame), with their velocities relative to
+  // the chassis: deform moves them along those through its substeps.
   deform::StepInputs inputs;
   inputs.contact_friction = dc.settings.contact_friction;
   dc.shapes.clear();
-  struct Moving {
-    ObstacleShape local;
-    Eigen::Vector3d sweep, down, travel;
-    bool post;
-    bool car;  ///< another car's body: met between the control points too (face contacts)
-  };
-  std::vector<Moving> moving;
   for (const EntityRef& other : dc.touching) {
     const ObstacleShape world_shape = worldShapeOf(other);
     const ObstacleShape local = transformShape(world_shape, frame);
+    const Eigen::Vector3d relative_mps = to_vehicle * (velocityOf(other) - car.velocity_mps());
     // Sweep away from the car, against the contact normals. A point can be as deep as the deepest contact
     // at the start of the step plus the step's closing travel; twice that keeps the near face the nearest.
     Eigen::Vector3d normal{0, 0, 0};
@@ -389,8 +344,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     Eigen::Vector3d sweep{0, 0, 0};
     if (normal.norm() > 1e-12) {
       normal.normalize();
-      const double closing =
-          std::max(0.0, -(to_vehicle * (car.velocity_mps() - velocityOf(other))).dot(normal));
+      const double closing = std::max(0.0, relative_mps.dot(normal));
       sweep = -(2.0 * (deepest_m + closing * dt) + 0.05) * normal;
     }
     // An obstacle standing on the ground reaches into it.
@@ -398,25 +352,23 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     if (standsOnGround(world_shape)) down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
     const bool post =
         other.kind == EntityRef::Kind::Obstacle && world.obstacleKind(other.index) == ObstacleKind::Post;
-    // Another car's body is met between the control points too (face contacts): its front falling
-    // between this body's points would otherwise pass into it. Posts are left to the points: with face
-    // contacts a pole's dent spread over the whole front (a 150-point car at 30 km/h) instead of the narrow
-    // notch a pole makes; at coarse levels of detail a thin post can still slip between the points.
-    const bool car_body = other.kind == EntityRef::Kind::Car;
-    dc.shapes.add(local, sweep, down, post, car_body);
-    // How far the obstacle moved in the vehicle frame during the step (translation) [m].
-    const Eigen::Vector3d travel = -(to_vehicle * (car.velocity_mps() - velocityOf(other))) * dt;
-    moving.push_back({local, sweep, down, travel, post, car_body});
+    // Every obstacle is met between the control points too (face contacts): a post or another car's
+    // corner thinner than the point spacing pushes the faces and edges it meets, at any level of detail.
+    dc.shapes.add(local, sweep, down, post, true);
+    inputs.contact_velocity_mps.push_back(relative_mps);
   }
   inputs.contacts = dc.shapes.shapes();
   inputs.surface_contact = dc.shapes.surfaceFlags();
+  // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
+  // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
+  if (crush) inputs.core_mass_kg = car.mass_kg();
 
   // Visual (and vegetation in either coupling): the contact impulses go to the nearest control points
   // (inverse-distance weights).
   const deform::BodyState& state = dc.body->state();
   if (dc.settings.visual_impulse_scale > 0) {
     constexpr std::size_t kNearest = 4;
-    const bool visual = dc.settings.coupling == Coupling::Visual;
+    const bool visual = !crush;
     for (const CarContact& c : contacts) {
       const bool dents = (visual && crushable(world, c.other)) || vegetation(world, c.other);
       if (!dents || c.impulse_N_s.squaredNorm() == 0) continue;
@@ -439,94 +391,33 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
     inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
   }
-  dc.previous_velocity_mps = car.velocity_mps();
-
-  // The points about to be pushed: where the crush force acts (their centroid).
-  Eigen::Vector3d pushed_sum{0, 0, 0};
-  int pushed = 0;
-  deform::Penetration pen;
-  for (const auto& shape : inputs.contacts)
-    for (const Eigen::Vector3d& x : state.positions_m)
-      if (deform::penetration(shape, x, pen)) {
-        pushed_sum += x;
-        ++pushed;
-      }
 
   dc.plastic_before_step_J = state.plastic_work_J;
-  const double body_before_J = deform::bodyEnergy(*dc.body_settings, state).total_J();
-  // deform keeps an obstacle still through the substeps of a step, so one that moved v dt during the step
-  // would push the points in its way by all of it in the first substep, at `substeps` times the closing
-  // speed (and 1/2 m (S v)^2 of kinetic energy). Instead the substeps are taken here, one deform step each,
-  // with every obstacle moved along its path through the step (translation; its turn is neglected).
-  deform::StepReport report;
-  const int substeps = dc.settings.substeps;
-  for (int k = 1; k <= substeps; ++k) {
-    if (k > 1) inputs.impulses.clear();  // impulses act once, at the start of the step
-    if (!moving.empty()) {
-      dc.substep_shapes.clear();
-      const double behind = static_cast<double>(substeps - k) / static_cast<double>(substeps);
-      for (const Moving& o : moving)
-        dc.substep_shapes.add(
-            transformShape(o.local, Pose{behind * o.travel, Eigen::Quaterniond::Identity()}), o.sweep, o.down,
-            o.post, o.car);
-      inputs.contacts = dc.substep_shapes.shapes();
-      inputs.surface_contact = dc.substep_shapes.surfaceFlags();
-    }
-    const deform::StepReport part = dc.body->step(inputs, dt / substeps);
-    report.contact_points += part.contact_points;
-    report.plastic_work_J += part.plastic_work_J;
-    report.max_speed_mps = part.max_speed_mps;
-    report.asleep = part.asleep;
-  }
-  const double absorbed_J = dc.body->state().plastic_work_J - dc.plastic_before_step_J +
-                            deform::bodyEnergy(*dc.body_settings, dc.body->state()).total_J() - body_before_J;
+  const deform::StepReport report = dc.body->step(inputs, dt);
+  dc.damping_loss_J += report.damping_loss_J;
+  dc.contact_work_J += report.contact_work_J;
 
-  // Crush: the spokes' elastic forces on the core, (l - L) / alpha along each spoke, are the crumple's
-  // resistance carried into the chassis (quasi-static: they balance the contact forces on the shell).
-  dc.force_pending = false;
-  dc.force_others.clear();
-  if (dc.settings.coupling == Coupling::Crush && report.contact_points > 0) {
-    const deform::BodySettings& bs = *dc.body_settings;
-    const deform::BodyState& s = dc.body->state();
-    Eigen::Vector3d force{0, 0, 0};
-    for (std::size_t k = 0; k < bs.spokes.size(); ++k) {
-      const deform::SpokeConstraint& spoke = bs.spokes[k];
-      const Eigen::Vector3d d = s.positions_m[spoke.point] - bs.core_m;
-      const double length = d.norm();
-      if (length < deform::kMinConstraintLength_m) continue;
-      force += ((length - s.spoke_rest_m[k]) / spoke.compliance_m_per_N / length) * d;
-    }
-    // Energy consistency: the shell's point masses that the obstacle stops lose their momentum, which the
-    // chassis (carrying the whole mass in ODE) must lose too; and with few iterations the spokes need not
-    // carry all of the contact's load. So when the body took in more energy than the spoke force will
-    // take from the chassis over the next step (at the speed it closes now), the force is raised to
-    // charge the difference (along the contact normal), at most to what would stop the chassis within the
-    // step.
-    dc.energy_debt_J += absorbed_J;
-    const Eigen::Vector3d world_force = frame.orientation * force;
-    Eigen::Vector3d extra{0, 0, 0};
-    Eigen::Vector3d normal{0, 0, 0};  // out of what the car hits (world)
-    for (const CarContact& c : contacts)
-      if (crushable(world, c.other)) normal += frame.orientation * c.normal;
-    if (normal.norm() > 1e-12 && dc.energy_debt_J > 0) {
-      normal.normalize();
-      const double closing_mps = -car.velocity_mps().dot(normal);
-      const double travel_m = closing_mps * dt;
-      const double along_N = world_force.dot(normal);
-      if (travel_m > 1e-6) {
-        const double needed_N = dc.energy_debt_J / travel_m;
-        const double stop_N = car.mass_kg() * closing_mps / dt;
-        const double raised_N = std::clamp(needed_N, along_N, std::max(along_N, stop_N));
-        extra = (raised_N - along_N) * normal;
+  // Reaction, equal and opposite in this step: the momentum the body handed its core goes to the chassis
+  // (and the core's travel within the step to its position); the momentum the obstacles gave the points
+  // goes back to a free obstacle (a pushed box), at the contact points' centre.
+  dc.step_crush_work_J = 0;
+  if (crush) {
+    const double kinetic_before_J = kineticEnergy(car);
+    world.applyImpulse({EntityRef::Kind::Car, dc.id}, frame.orientation * report.core_impulse_Ns,
+                       frame.toWorld(dc.body_settings->core_m),
+                       frame.orientation * report.core_angular_impulse_Nms);
+    world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
+    dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
+    if (report.contact_impulse_Ns.squaredNorm() > 0)
+      for (const EntityRef& other : dc.touching) {
+        if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
+          continue;  // another deformable car takes its share through its own body
+        world.applyImpulse(
+            other, -(frame.orientation * report.contact_impulse_Ns) / static_cast<double>(dc.touching.size()),
+            interiorPoint(worldShapeOf(other)));
       }
-    }
-    const Eigen::Vector3d at = pushed > 0 ? Eigen::Vector3d(pushed_sum / pushed) : bs.core_m;
-    dc.force_N = world_force;
-    dc.force_point_m = frame.toWorld(at);
-    dc.extra_force_N = extra;  // through the centre of mass: it stands for momentum, not a moment
-    dc.force_pending = world_force.allFinite() && extra.allFinite();
-    dc.force_others = dc.touching;
   }
+  dc.previous_velocity_mps = car.velocity_mps();
 
   // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5): no
   // point has touched anything for 0.1 s, the body is at rest, and the old hull touches nothing it could
@@ -539,8 +430,8 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     ++dc.quiet_steps;
   }
   const int quiet_needed = std::max(1, static_cast<int>(std::ceil(0.1 / dt)));
-  if (dc.settings.coupling == Coupling::Crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed &&
-      dc.touching.empty() && report.max_speed_mps < 0.05) {
+  if (crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed && dc.touching.empty() &&
+      report.max_speed_mps < 0.05) {
     const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
     const deform::ControlMesh dented =
         deform::buildControlMesh(dc.body->state().positions_m, n, "dented body");
@@ -579,6 +470,8 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     dc.impact_steps = 0;
     mt.energy.kinetic_initial_J = kinetic_before;
     dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
+    dc.damping_at_impact_J = dc.damping_loss_J;
+    dc.contact_work_at_impact_J = dc.contact_work_J;
   }
   // The impact normal: the depth-weighted normals of the contacts with what was hit over the first 10 ms
   // (the very first contact of two rounded fronts can have any normal).
@@ -630,9 +523,11 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   e.other_work_J += dc.step_other_work_J;
   e.plastic_work_J = s.plastic_work_J - dc.plastic_at_impact_J;
   e.kinetic_final_J = kineticEnergy(car);
-  e.dissipated_J = e.crush_work_J - e.plastic_work_J + e.other_work_J;
+  e.damping_loss_J = dc.damping_loss_J - dc.damping_at_impact_J;
   e.body_energy_J = deform::bodyEnergy(*dc.body_settings, s).total_J();
-  e.balance_error_J = e.kinetic_initial_J - e.plastic_work_J - e.dissipated_J - e.kinetic_final_J;
+  e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
+  e.dissipated_J = e.damping_loss_J + e.other_work_J;
+  e.balance_error_J = e.crush_work_J - e.plastic_work_J - e.damping_loss_J - e.body_energy_J;
 }
 
 std::size_t Simulation::deformableCount() const {

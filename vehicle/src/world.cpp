@@ -509,6 +509,34 @@ void World::addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eig
   dBodyAddForceAtPos(body, force_N.x(), force_N.y(), force_N.z(), point_m.x(), point_m.y(), point_m.z());
 }
 
+void World::applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, const Eigen::Vector3d& point_m,
+                         const Eigen::Vector3d& angular_impulse_Nms) {
+  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
+                                                     : impl_->obstacles.at(entity.index).body;
+  if (body == nullptr) return;
+  dBodyEnable(body);
+  dMass mass;
+  dBodyGetMass(body, &mass);
+  Eigen::Matrix3d inertia_body;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) inertia_body(r, c) = mass.I[4 * r + c];
+  const dReal* q = dBodyGetQuaternion(body);
+  const Eigen::Matrix3d rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  const Eigen::Vector3d centre = ode::vec(dBodyGetPosition(body));
+  const Eigen::Vector3d velocity = ode::vec(dBodyGetLinearVel(body)) + impulse_Ns / mass.mass;
+  const Eigen::Vector3d angular_impulse = (point_m - centre).cross(impulse_Ns) + angular_impulse_Nms;
+  const Eigen::Vector3d omega = ode::vec(dBodyGetAngularVel(body)) +
+                                rotation * inertia_body.inverse() * (rotation.transpose() * angular_impulse);
+  dBodySetLinearVel(body, velocity.x(), velocity.y(), velocity.z());
+  dBodySetAngularVel(body, omega.x(), omega.y(), omega.z());
+}
+
+void World::shiftCar(CarId id, const Eigen::Vector3d& shift_m) {
+  dBodyID body = impl_->cars.at(id)->body_;
+  const Eigen::Vector3d p = ode::vec(dBodyGetPosition(body)) + shift_m;
+  dBodySetPosition(body, p.x(), p.y(), p.z());
+}
+
 void World::step() {
   Impl& m = *impl_;
   const double dt = fixedDt_s();

@@ -61,7 +61,17 @@ struct BodySettings {
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<double> edge_rest_m;   ///< original rest lengths L0, one per edge [m]
   std::vector<double> spoke_rest_m;  ///< original rest lengths L0, one per spoke [m]
-  std::vector<double> bend_rest_m;   ///< original rest lengths L0, one per bend [m]
+  /// Where each spoke is anchored on the core, relative to core_m (it moves with the core) [m]: the foot
+  /// of the core on the line through the point along its area normal, so the column runs along the
+  /// skin's normal (see createBodySettings); core_m itself where that foot is not inside.
+  std::vector<Eigen::Vector3d> spoke_anchor_m;
+  std::vector<double> bend_rest_m;       ///< original rest lengths L0, one per bend [m]
+  std::vector<YieldLimits> edge_yield;   ///< elastic range of each edge (from its material and strip) [m]
+  std::vector<YieldLimits> spoke_yield;  ///< elastic range of each spoke (crush column) [m]
+  std::vector<YieldLimits> bend_yield;   ///< elastic range of each bend [m]
+  /// Skin area each control point stands for, as seen along its normal: the length of the sum of a third
+  /// of its triangles' area vectors [m^2].
+  std::vector<double> tributary_area_m2;
 
   std::vector<Material> materials;       ///< [0] = the default, then one per region
   std::vector<PlasticLaw> plastic_laws;  ///< the plasticity part of each material, same indexing
@@ -70,7 +80,8 @@ struct BodySettings {
   std::size_t constraintCount() const { return edges.size() + spokes.size() + bends.size(); }
 };
 
-/// Builds the constraint arrays (edges, spokes, bends), inverse masses and per-constraint compliances.
+/// Builds the constraint arrays (edges, spokes, bends), inverse masses, and each constraint's compliance
+/// and yield limits from its material and the geometry it stands for (material.hpp).
 /// A point mass that is not positive (a control point with no tetrahedron volume) gets 1e-3 of the mean
 /// point mass, so no inverse mass is infinite. Throws InputError naming the field for a mismatched mass
 /// split, a bad material, a region or override index out of range, or a deviation that is not finite

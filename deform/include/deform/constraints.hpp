@@ -60,17 +60,20 @@ inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double w
   return c;
 }
 
-/// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the kinematic core at `core_m`
-/// (infinite mass): the spoke (eq. 17, 18 with w_core = 0). Returns C before the projection [m].
-inline double projectSpoke(Eigen::Vector3d& x, const Eigen::Vector3d& core_m, double w, double rest_m,
-                           double alpha_tilde, double& lambda) {
+/// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the core at `core_m` (inverse
+/// mass `w_core` [1/kg]; 0 = kinematic): the spoke (eq. 17, 18). Returns C before the projection [m].
+inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w, double w_core,
+                           double rest_m, double alpha_tilde, double& lambda) {
   const Eigen::Vector3d d = x - core_m;
   const double length = d.norm();
-  if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
+  const double sum = w + w_core;
+  if (length < kMinConstraintLength_m || sum + alpha_tilde <= 0) return 0;
   const double c = length - rest_m;
-  const double d_lambda = (-c - alpha_tilde * lambda) / (w + alpha_tilde);
+  const double d_lambda = (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
   lambda += d_lambda;
-  x += (w * d_lambda / length) * d;
+  const Eigen::Vector3d n = d * (d_lambda / length);
+  x += w * n;
+  core_m -= w_core * n;
   return c;
 }
 
@@ -141,29 +144,35 @@ inline void removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0, c
   for (std::size_t i = 0; i < n; ++i) x[i] += mu.cross(x0[i] - core_m);
 }
 
-/// Plasticity of one constraint: the material constants it needs.
+/// How far one constraint may be stretched or shortened elastically before its rest length flows [m]:
+/// its yield force times its compliance, fixed by the original geometry (body_settings.cpp).
+struct YieldLimits {
+  double stretch_m = 0;  ///< elastic elongation l - L at yield in tension [m], >= 0
+  double shorten_m = 0;  ///< elastic shortening L - l at yield in compression [m], >= 0
+};
+
+/// Plasticity of one constraint: the material constants it needs besides its yield limits.
 struct PlasticLaw {
-  double yield_strain = 0;       ///< initial yield strain [1]
   double hardening = 0;          ///< plastic / elastic modulus ratio [1]
   double min_rest_fraction = 0;  ///< lower clamp of L / L0 [1]
   double max_rest_fraction = 0;  ///< upper clamp of L / L0 [1]
 };
 
-/// Return map of the rest length (1D elastoplasticity with linear hardening): with the elastic strain
-/// e = (l - L) / L and the yield strain grown by hardening, e_y = yield + H |L - L0| / L0, a strain past
-/// e_y moves L towards l by L (|e| - e_y) / (1 + H); the result is clamped to
-/// [min, max] x L0. Returns the new rest length [m]; `length_m` is the current length l, `rest_m` is L
-/// and `original_rest_m` is L0.
+/// Return map of the rest length (1D elastoplasticity with linear hardening, Simo and Hughes 1998,
+/// Box 1.1, in elongations): with the elastic elongation e = l - L and the yield elongation grown by
+/// hardening, e_y = yield + H |L - L0|, an elongation past e_y moves L towards l by (|e| - e_y) / (1 + H);
+/// the result is clamped to [min, max] x L0. Returns the new rest length [m]; `length_m` is the current
+/// length l, `rest_m` is L and `original_rest_m` is L0.
 inline double plasticRestLength(double length_m, double rest_m, double original_rest_m,
-                                const PlasticLaw& law) {
+                                const YieldLimits& yield, const PlasticLaw& law) {
   if (!(rest_m > 0) || !(original_rest_m > 0)) return rest_m;
-  const double strain = (length_m - rest_m) / rest_m;
-  const double taken = std::abs(rest_m - original_rest_m) / original_rest_m;
-  const double yield = law.yield_strain + law.hardening * taken;
-  const double magnitude = std::abs(strain);
-  if (!(magnitude > yield)) return rest_m;
-  const double flow = rest_m * (magnitude - yield) / (1.0 + law.hardening);
-  const double moved = strain > 0 ? rest_m + flow : rest_m - flow;
+  const double elongation = length_m - rest_m;
+  const double taken = law.hardening * std::abs(rest_m - original_rest_m);
+  const double limit = (elongation > 0 ? yield.stretch_m : yield.shorten_m) + taken;
+  const double magnitude = std::abs(elongation);
+  if (!(magnitude > limit)) return rest_m;
+  const double flow = (magnitude - limit) / (1.0 + law.hardening);
+  const double moved = elongation > 0 ? rest_m + flow : rest_m - flow;
   return std::clamp(moved, law.min_rest_fraction * original_rest_m, law.max_rest_fraction * original_rest_m);
 }
 

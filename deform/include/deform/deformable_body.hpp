@@ -22,6 +22,23 @@ struct StepReport {
   uint32_t contact_points = 0;  ///< control points found inside an obstacle (summed over substeps)
   double plastic_work_J = 0;    ///< plastic work done during the step [J]
   double max_speed_mps = 0;     ///< fastest control point at the end, relative to the chassis [m/s]
+  /// Momentum the body handed the core over the step: the spokes' pull, the visual constraint's, the
+  /// shell orientation's and the damping's reactions (vehicle frame) [N s]. Equal and opposite to the
+  /// momentum those took from the points.
+  Eigen::Vector3d core_impulse_Ns{0, 0, 0};
+  /// Angular momentum about the core the shell orientation constraint handed the core [N m s].
+  Eigen::Vector3d core_angular_impulse_Nms{0, 0, 0};
+  /// How far the core moved during the step, and its velocity at the end, relative to its kinematic path
+  /// (zero for an infinite core mass) [m], [m/s]. The state is re-centred on the core afterwards.
+  Eigen::Vector3d core_displacement_m{0, 0, 0};
+  Eigen::Vector3d core_velocity_mps{0, 0, 0};
+  /// Momentum the obstacles gave the points (contact push-out and friction, face contacts) [N s].
+  Eigen::Vector3d contact_impulse_Ns{0, 0, 0};
+  /// Energy the viscous damping took out of the points' motion relative to the core [J].
+  double damping_loss_J = 0;
+  /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the
+  /// obstacle's velocity V relative to the chassis) [J]: what the obstacles put into the body.
+  double contact_work_J = 0;
 };
 
 /// Energy of the body relative to the chassis (the core is kinematic).
@@ -60,15 +77,26 @@ class DeformableBody {
   void setParams(const SolverParams& params);
 
  private:
-  void substep(double h, const StepInputs& inputs, StepReport& report);
+  void substep(double h, const std::vector<ContactShape>& shapes, const StepInputs& inputs,
+               StepReport& report);
   /// Fills contacts_; returns how many points are inside an obstacle.
-  uint32_t findContacts(const StepInputs& inputs);
-  void plasticity(StepReport& report);
+  uint32_t findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs);
+  /// `shapes` moved back along their velocities to where they are `behind_s` before the step's end.
+  void placeObstacles(const StepInputs& inputs, double behind_s);
+  void plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h);
   bool loadChanged() const;
+
+  /// A support shape moved by `offset_m` (an obstacle part way along its path through the step).
+  struct ShiftedSupport {
+    ConvexSupportShape shape;
+    Eigen::Vector3d offset_m{0, 0, 0};
+    static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction);
+  };
 
   /// A contact for one substep: point `point` must stay on the outer side of the plane through
   /// `surface_m` with unit normal `normal`.
   struct ContactPoint {
+    uint32_t shape;  ///< index into the step's contacts
     uint32_t point;
     Eigen::Vector3d normal;
     Eigen::Vector3d surface_m;
@@ -77,13 +105,14 @@ class DeformableBody {
   /// A point of the control surface between `corners` (at barycentric `bary`) inside an obstacle: it
   /// must come out to the plane through `surface_m` with unit `normal` (out of the obstacle).
   struct FaceContact {
+    uint32_t shape;  ///< index into the step's contacts
     std::array<uint32_t, 3> corners;
     Eigen::Vector3d bary;
     Eigen::Vector3d normal;
     Eigen::Vector3d surface_m;
   };
   /// Appends the face contacts of one obstacle; returns how many.
-  uint32_t findFaceContacts(const ContactShape& shape);
+  uint32_t findFaceContacts(const ContactShape& shape, uint32_t shape_index);
 
   std::shared_ptr<const BodySettings> settings_;
   SolverParams params_;
@@ -93,7 +122,14 @@ class DeformableBody {
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
-  std::vector<uint8_t> touched_;  ///< per point: in contact with the obstacle being searched
+  std::vector<uint8_t> touched_;                   ///< per point: in contact with the obstacle being searched
+  std::vector<Eigen::Vector3d> contact_shift_m_;   ///< per point: how far the obstacles moved it this substep
+  std::vector<Eigen::Vector3d> contact_velocity_;  ///< per point: the velocity of what moved it [m/s]
+  std::vector<ContactShape> placed_;               ///< the obstacles where they are in the current substep
+  std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
+  // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
+  Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
+  double core_inverse_mass_per_kg_ = 0;
   /// This step's inertial inputs, unscaled: g - a_c [m/s^2], omega [rad/s], alpha [rad/s^2].
   Eigen::Vector3d load_mps2_{0, 0, 0}, omega_radps_{0, 0, 0}, alpha_radps2_{0, 0, 0};
   double radius_m_ = 0;  ///< longest spoke at rest: reach of the angular terms [m]

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace deform {
@@ -25,7 +26,12 @@ struct ChassisMotion {
 };
 
 struct StepInputs {
-  std::vector<ContactShape> contacts;  ///< obstacles this step (immovable)
+  /// Obstacles this step, where they are at the END of the step (vehicle frame).
+  std::vector<ContactShape> contacts;
+  /// Per entry of `contacts` (missing entries: at rest): the obstacle's velocity relative to the chassis
+  /// over the step, in the vehicle frame [m/s]. deform moves each obstacle along it through its substeps
+  /// (translation), so one that closes v dt during the step pushes the points at v, not all at once.
+  std::vector<Eigen::Vector3d> contact_velocity_mps;
   /// Per entry of `contacts` (missing entries: 0): when set, the obstacle is also met between the control
   /// points: points of the control surface (triangle centroids, edge midpoints) found inside it push the
   /// corners around them out (face contacts). For a broad body such as another car, whose flat front can
@@ -38,6 +44,11 @@ struct StepInputs {
   double contact_friction = 0.0;
   std::vector<PointImpulse> impulses;  ///< point impulses
   ChassisMotion chassis;               ///< for inertial forces
+  /// Mass of the core (the chassis that the spokes hold the points to) [kg]. Finite: the core is a heavy
+  /// particle inside the substeps, pushed back by every force the body puts on it, and the step reports
+  /// how far it moved and the momentum it took (StepReport::core_*), for the caller to hand to its
+  /// rigid body. Infinite (the default): the core is kinematic; the momentum it took is still reported.
+  double core_mass_kg = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace deform

@@ -20,13 +20,13 @@ TEST_CASE("a compliant spoke under a constant load settles at alpha m g whatever
   const double mass_kg = 2.0, compliance = 1e-4, g = 9.81;
   for (double h : {1.0 / 60, 1.0 / 600, 1.0 / 6000}) {
     Eigen::Vector3d x(0, 0, -1), v(0, 0, 0);
-    const Eigen::Vector3d core(0, 0, 0);
+    Eigen::Vector3d core(0, 0, 0);
     for (int k = 0; k < static_cast<int>(3.0 / h); ++k) {
       const Eigen::Vector3d previous = x;
       v = v * std::exp(-20.0 * h) + Eigen::Vector3d(0, 0, -g * h);
       x += h * v;
       double lambda = 0;
-      deform::projectSpoke(x, core, 1.0 / mass_kg, 1.0, compliance / (h * h), lambda);
+      deform::projectSpoke(x, core, 1.0 / mass_kg, 0.0, 1.0, compliance / (h * h), lambda);
       v = (x - previous) / h;
     }
     INFO("h = " << h);
@@ -35,17 +35,25 @@ TEST_CASE("a compliant spoke under a constant load settles at alpha m g whatever
 }
 
 TEST_CASE("the plastic return map: elastic below yield, flows by the excess above, clamped", "[dynamics]") {
-  const PlasticLaw law{0.02, 0.0, 0.5, 1.5};
-  CHECK(deform::plasticRestLength(1.019, 1.0, 1.0, law) == 1.0);  // below yield: untouched
-  CHECK(deform::plasticRestLength(0.981, 1.0, 1.0, law) == 1.0);
-  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, law) == Approx(1.08));  // excess 0.08 taken
-  CHECK(deform::plasticRestLength(0.90, 1.0, 1.0, law) == Approx(0.92));
-  CHECK(deform::plasticRestLength(0.10, 1.0, 1.0, law) == Approx(0.5));  // clamp: never below half
-  CHECK(deform::plasticRestLength(9.0, 1.0, 1.0, law) == Approx(1.5));
-  // Hardening: with H = 1 half the excess flows, and the yield grows with the plastic strain taken.
-  const PlasticLaw hard{0.02, 1.0, 0.5, 1.5};
-  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, hard) == Approx(1.04));
-  CHECK(deform::plasticRestLength(1.10, 1.04, 1.0, hard) == 1.04);  // e = 0.0577 < 0.02 + 0.04
+  const deform::YieldLimits yield{0.02, 0.02};
+  const PlasticLaw law{0.0, 0.5, 1.5};
+  CHECK(deform::plasticRestLength(1.019, 1.0, 1.0, yield, law) == 1.0);  // below yield: untouched
+  CHECK(deform::plasticRestLength(0.981, 1.0, 1.0, yield, law) == 1.0);
+  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, yield, law) == Approx(1.08));  // excess 0.08 taken
+  CHECK(deform::plasticRestLength(0.90, 1.0, 1.0, yield, law) == Approx(0.92));
+  CHECK(deform::plasticRestLength(0.10, 1.0, 1.0, yield, law) == Approx(0.5));  // clamp: never below half
+  CHECK(deform::plasticRestLength(9.0, 1.0, 1.0, yield, law) == Approx(1.5));
+  // Hardening: with H = 1 half the excess flows, and the yield grows with the plastic elongation taken.
+  const PlasticLaw hard{1.0, 0.5, 1.5};
+  CHECK(deform::plasticRestLength(1.10, 1.0, 1.0, yield, hard) == Approx(1.04));
+  CHECK(deform::plasticRestLength(1.10, 1.04, 1.0, yield, hard) == 1.04);  // e = 0.06 = 0.02 + 0.04
+  // Yield limits fixed by the original geometry: a column shortened by half yields at the same
+  // elongation (force), not at half of it.
+  CHECK(deform::plasticRestLength(0.519, 0.5, 1.0, yield, law) == 0.5);
+  // Asymmetric: a panel folds under a small shortening but stretches only past its tension limit.
+  const deform::YieldLimits panel{0.05, 0.001};
+  CHECK(deform::plasticRestLength(1.04, 1.0, 1.0, panel, law) == 1.0);
+  CHECK(deform::plasticRestLength(0.99, 1.0, 1.0, panel, law) == Approx(0.991));
 }
 
 TEST_CASE("the visual constraint projects onto the ball around the start", "[dynamics]") {

@@ -25,9 +25,8 @@ StepInputs crashInputs(int step) {
 
 std::shared_ptr<const BodySettings> crashBody() {
   BodyDescription d;
-  d.material.yield_strain = 0.01;
   d.max_deviation_m = 0.15;
-  return makeSettings(sphereHull(162), 1500.0, d);
+  return makeSettings(sphereHull(162), 1500.0, d, UniformMaterial{1e-6, 1e-5, 1e-5, 0.01});
 }
 
 }  // namespace

@@ -16,9 +16,8 @@ namespace {
 /// energy after every step of one second (index 0: at release).
 std::vector<double> energyTrace(uint32_t substeps, double damping_per_s, double compliance_m_per_N = 1e-3) {
   BodyDescription d;
-  d.material = elasticMaterial(compliance_m_per_N);
   d.max_deviation_m = 10.0;
-  const auto settings = makeSettings(sphereHull(42), 500.0, d);
+  const auto settings = makeSettings(sphereHull(42), 500.0, d, elasticMaterial(compliance_m_per_N));
   SolverParams params;
   params.substeps = substeps;
   params.damping_per_s = damping_per_s;

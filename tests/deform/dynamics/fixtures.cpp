@@ -38,11 +38,25 @@ std::shared_ptr<const deform::BodySettings> makeSettings(const deform::ControlMe
   return std::make_shared<const deform::BodySettings>(deform::createBodySettings(mesh, masses, description));
 }
 
-deform::Material elasticMaterial(double compliance_m_per_N) {
-  deform::Material m;
-  m.edge_compliance_m_per_N = m.spoke_compliance_m_per_N = m.bend_compliance_m_per_N = compliance_m_per_N;
-  m.yield_strain = 1e9;
-  return m;
+std::shared_ptr<const deform::BodySettings> makeSettings(const deform::ControlMesh& mesh, double mass_kg,
+                                                         const deform::BodyDescription& description,
+                                                         const UniformMaterial& uniform) {
+  deform::BodySettings s = *makeSettings(mesh, mass_kg, description);
+  auto set = [&](auto& constraints, const std::vector<double>& rest, std::vector<deform::YieldLimits>& yield,
+                 double compliance) {
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      constraints[k].compliance_m_per_N = compliance;
+      yield[k] = {uniform.yield_strain * rest[k], uniform.yield_strain * rest[k]};
+    }
+  };
+  set(s.edges, s.edge_rest_m, s.edge_yield, uniform.edge_compliance_m_per_N);
+  set(s.spokes, s.spoke_rest_m, s.spoke_yield, uniform.spoke_compliance_m_per_N);
+  set(s.bends, s.bend_rest_m, s.bend_yield, uniform.bend_compliance_m_per_N);
+  return std::make_shared<const deform::BodySettings>(std::move(s));
+}
+
+UniformMaterial elasticMaterial(double compliance_m_per_N) {
+  return {compliance_m_per_N, compliance_m_per_N, compliance_m_per_N, 1e9};
 }
 
 std::vector<deform::ContactShape> radialPlates(const deform::BodySettings& settings, double reach_m) {

@@ -21,7 +21,22 @@ std::shared_ptr<const deform::BodySettings> makeSettings(const deform::ControlMe
                                                          const deform::BodyDescription& description);
 
 /// A material that never yields, with the given compliance for every kind [m/N].
-deform::Material elasticMaterial(double compliance_m_per_N);
+/// Constraint constants set directly, for tests of the solver's math on bodies that are not cars: every
+/// edge, spoke and bend gets these compliances and yields at yield_strain x its original length.
+struct UniformMaterial {
+  double edge_compliance_m_per_N = 1e-6;
+  double spoke_compliance_m_per_N = 1e-5;
+  double bend_compliance_m_per_N = 1e-5;
+  double yield_strain = 0.02;  ///< [1]; 1e9 = elastic
+};
+
+/// makeSettings, then the uniform constants over the physical material's.
+std::shared_ptr<const deform::BodySettings> makeSettings(const deform::ControlMesh& mesh, double mass_kg,
+                                                         const deform::BodyDescription& description,
+                                                         const UniformMaterial& uniform);
+
+/// Elastic (never yields), every compliance `compliance_m_per_N`.
+UniformMaterial elasticMaterial(double compliance_m_per_N);
 
 /// Half-spaces pressing every vertex of a body centred on the origin radially inwards, each to the
 /// radius `reach_m` (one plane per vertex, normal along it).

@@ -13,8 +13,7 @@ namespace {
 /// Mean x displacement [m] after 1 s of a steady acceleration a_x.
 double meanLagX(double inertial_scale, double accel_mps2) {
   BodyDescription d;
-  d.material = elasticMaterial(1e-5);
-  const auto settings = makeSettings(icosahedron(), 1000.0, d);
+  const auto settings = makeSettings(icosahedron(), 1000.0, d, elasticMaterial(1e-5));
   SolverParams params;
   params.inertial_scale = inertial_scale;
   params.damping_per_s = 30;
@@ -41,8 +40,7 @@ TEST_CASE("braking throws the body forward, in proportion to the inertial scale;
 
 TEST_CASE("a spinning chassis flings the control points outwards", "[dynamics]") {
   BodyDescription d;
-  d.material = elasticMaterial(1e-5);
-  const auto settings = makeSettings(icosahedron(), 1000.0, d);
+  const auto settings = makeSettings(icosahedron(), 1000.0, d, elasticMaterial(1e-5));
   SolverParams params;
   params.damping_per_s = 30;
   params.sleep_delay_s = -1;

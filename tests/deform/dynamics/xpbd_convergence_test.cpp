@@ -63,9 +63,7 @@ double simulatedSag(const std::shared_ptr<const BodySettings>& settings, uint32_
 TEST_CASE("XPBD: the same compliance gives the same static deflection for any substeps and time step",
           "[dynamics]") {
   BodyDescription d;
-  d.material = elasticMaterial(1e-5);
-  d.material.edge_compliance_m_per_N = 2e-6;
-  const auto settings = makeSettings(icosahedron(1.0), 1000.0, d);
+  const auto settings = makeSettings(icosahedron(1.0), 1000.0, d, UniformMaterial{2e-6, 1e-5, 1e-5, 1e9});
   const double g = 9.81;
   const double reference = linearSag(*settings, g);
   for (uint32_t iterations : {1u, 4u}) {

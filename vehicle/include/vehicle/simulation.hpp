@@ -23,6 +23,7 @@
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
 #include <deform/deformable_body.hpp>
+#include <deform/material.hpp>
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -36,14 +37,11 @@ enum class Coupling : uint8_t {
   Visual,  ///< the paper: motion unaffected by damage, dent from the contact impulse
 };
 
-/// The level of detail the material compliances are given for [-] (see compliance_m_per_N).
-inline constexpr std::size_t kReferenceControlPoints = 60;
-/// The vehicle mass the material compliances are given for [kg] (see compliance_m_per_N).
-inline constexpr double kReferenceMass_kg = 1500.0;
-
-/// Per-car deformation settings (scene keys vehicle.deformation.*). The material defaults are the
-/// calibration of docs/CRASH_CALIBRATION.md (the built-in 1500 kg sedan against 56 km/h full-width
-/// rigid-barrier tests).
+/// Per-car deformation settings (scene keys vehicle.deformation.*). The material is given in physical
+/// units (deform/material.hpp) and each constraint takes its share from the geometry it stands for, so
+/// the crush does not depend on the level of detail, and nothing is scaled by the car's mass: a heavier
+/// car with the same material crushes more. The defaults are the calibration of docs/CRASH_CALIBRATION.md
+/// (the built-in 1500 kg sedan against 56 km/h full-width rigid-barrier tests).
 struct DeformationSettings {
   std::size_t control_points = 60;  ///< control points of the deformable body (4 .. 5000) [-]
   double alpha = 3.5;               ///< skin: inverse-distance exponent for the render mesh [-]
@@ -52,22 +50,11 @@ struct DeformationSettings {
   int iterations = 2;               ///< Gauss-Seidel sweeps per substep (>= 1) [-]
   /// Visual constraint: no control point moves further than this from its rest position [m].
   double max_deviation_m = 1.0;
-  /// Elastic strain past which a constraint's rest length flows (the bumper's elastic range) [-].
-  double yield_strain = 0.012;
-  /// Linear hardening: plastic over elastic modulus [-] (crush force rising with crush).
-  double hardening = 0.0;
-  /// Compliance of the spokes (control point to core), the load path into the chassis, at
-  /// kReferenceControlPoints and kReferenceMass_kg; with N points every compliance is scaled by
-  /// sqrt(N / 60), which keeps the crush force about independent of the level of detail (measured: at a
-  /// fixed compliance it grows as N^0.46), and for a car of mass m by 1500 kg / m, which keeps the crash
-  /// pulse in g independent of the mass [m/N].
-  double compliance_m_per_N = 7e-7;
-  /// Compliance of hull edges and bends relative to the spokes' [-] (> 1: a softer shell, narrower dent).
-  double shell_compliance_ratio = 12.0;
+  /// The body's material (crush strength, shell membrane and bending, yield, hardening).
+  deform::Material material = sedanMaterial();
   /// Share of the vehicle mass carried by the control points in the deformation dynamics [-]: the
-  /// crushable body shell (a body-in-white is about a quarter of a car's kerb mass). The ODE chassis keeps
-  /// the whole mass; the points' mass only sets how the shell moves relative to it. (0, 1].
-  double shell_mass_fraction = 1.0;
+  /// crushable body shell (a body-in-white is about a quarter of a car's kerb mass). (0, 1].
+  double shell_mass_fraction = 0.25;
   /// Viscous damping of the control points' motion relative to the chassis [1/s].
   double damping = 80.0;
   /// Coulomb friction of control points sliding on what they hit [-].
@@ -75,36 +62,44 @@ struct DeformationSettings {
   /// Crush: intrusion of the chassis hull into what it hits beyond which ODE's rigid contact takes over
   /// (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below max_deviation_m.
   double crush_allowance_m = 0.8;
-  /// Scale of the chassis's inertial (fictitious) forces on the control points [-]. 0 in Crush: the
-  /// chassis already carries the whole mass, feeding its deceleration to the shell would count it twice.
+  /// Scale of the chassis's inertial (fictitious) forces on the control points [-].
   double inertial_scale = 0.0;
-  /// Visual: share of each contact impulse handed to the control points [-].
+  /// Visual: share of each contact impulse of ODE's rigid contact handed to the control points [-] (the
+  /// paper's coupling; not yet given a physical meaning, see docs/CRASH_CALIBRATION.md).
   double visual_impulse_scale = 0.05;
   Coupling coupling = Coupling::Crush;
+
+  /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
+  static deform::Material sedanMaterial();
 };
 
 /// Throws deform::InputError naming the member ("vehicle.deformation.<member>") for a value out of range.
 void checkDeformationSettings(const DeformationSettings& settings);
 
-/// Energy of a run since the car's first impact [J]. Every term is measured on its own (the works as
-/// sums of force . point velocity over the steps), so balance_error_J = KE_initial - plastic - dissipated
-/// - KE_final checks the accounting.
+/// Energy of a run since the car's first impact [J]. Every term is measured on its own: the chassis's
+/// kinetic energy, the kinetic energy the body's reaction took from it (crush_work_J), the work of every
+/// other force on it, and in the body its plastic work (force x plastic flow), its viscous loss and the
+/// elastic and kinetic energy it holds; balance_error_J then checks the body against the chassis.
 struct EnergyTerms {
   double kinetic_initial_J = 0;  ///< the chassis's kinetic energy (translation + rotation) at impact [J]
   double plastic_work_J = 0;     ///< plastic work done in the body since impact (deform) [J]
-  /// Everything else the chassis lost: the crush work the body did not turn into plastic work (its
-  /// damping, the stopping of its point masses at the obstacle, the elastic energy it still holds) plus
-  /// other_work_J [J].
+  double damping_loss_J = 0;     ///< the body's viscous loss since impact (deform) [J]
+  /// Work the obstacles did on the body, in the chassis's frame (StepReport::contact_work_J) [J].
+  double contact_work_J = 0;
+  /// damping_loss_J plus other_work_J: what left the car other than as plastic work [J].
   double dissipated_J = 0;
   double kinetic_final_J = 0;  ///< the chassis's kinetic energy now [J]
-  /// Work the crush force took from the chassis [J]. In Crush, plastic work cannot exceed it (energy is
-  /// not created inside the body).
+  /// Kinetic energy the body's reaction (the momentum it handed the chassis, step by step) took from the
+  /// chassis [J]. In Crush, what the body can turn into plastic work.
   double crush_work_J = 0;
   /// Work taken from the chassis by every other force: tyres and suspension, ODE's rigid contacts (the
   /// backstop, the ground), drag, gravity (raising the car) [J].
   double other_work_J = 0;
   double body_energy_J = 0;  ///< elastic plus kinetic energy held in the body relative to the chassis now [J]
-  double balance_error_J = 0;  ///< KE_initial - plastic - dissipated - KE_final: integration error [J]
+  /// crush_work - plastic - damping loss - body energy now [J]: what the body took from the chassis and
+  /// no measured term holds. Not yet measured on its own: the inelastic stopping of the points at the
+  /// obstacle and contact friction (docs/CRASH_CALIBRATION.md gives its size against N).
+  double balance_error_J = 0;
 };
 
 /// What a run did to one car (all since its first impact; zeros before it).

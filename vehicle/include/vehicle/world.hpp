@@ -152,6 +152,14 @@ class World {
   /// obstacles and the ground ignore it) [N], [m]. Wakes a sleeping obstacle.
   void addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m);
 
+  /// An impulse on a car's chassis or a free obstacle, now: its velocity changes by impulse / mass and its
+  /// angular velocity by I^-1 ((point - centre of mass) x impulse + angular_impulse) (world) [N s], [m],
+  /// [N m s]. Static obstacles and the ground ignore it. Wakes a sleeping obstacle.
+  void applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, const Eigen::Vector3d& point_m,
+                    const Eigen::Vector3d& angular_impulse_Nms = Eigen::Vector3d::Zero());
+  /// Moves a car's chassis by `shift_m` (world) [m], keeping its velocity and orientation.
+  void shiftCar(CarId id, const Eigen::Vector3d& shift_m);
+
   /// One fixed step of 1 / physics_rate_hz: wheel forces of every car, collisions, ODE quick step.
   void step();
   /// As many fixed steps as fit into the time accumulated so far plus dt_s; returns how many. Throws
