@@ -21,6 +21,8 @@ void registerRunCommand(CLI::App& app);
 void registerStressCommand(CLI::App& app);
 /// `sandbox tradeoff` (speed against accuracy), in cmd_tradeoff.cpp.
 void registerTradeoffCommand(CLI::App& app);
+/// `sandbox converge`: crush against the level of detail (cmd_converge.cpp).
+void registerConvergeCommand(CLI::App& app);
 /// `sandbox export` (the damaged car at a time as a mesh), in cmd_export.cpp.
 void registerExportCommand(CLI::App& app);
 

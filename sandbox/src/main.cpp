@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   sandbox::registerExportCommand(app);
   sandbox::registerStressCommand(app);
   sandbox::registerTradeoffCommand(app);
+  sandbox::registerConvergeCommand(app);
   // CLI11 says only "A subcommand is required" for a mistyped command; name it instead.
   const auto known =
       app.get_subcommands([&](const CLI::App* sub) { return argc > 1 && sub->get_name() == argv[1]; });
