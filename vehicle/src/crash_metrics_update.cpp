@@ -1,0 +1,120 @@
+// What a run did to one deformable car (simulation.hpp, CrashMetrics): impact, rebound, crush profile,
+// energy terms, divergence, updated after every step.
+#include "simulation_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vehicle {
+
+void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before,
+                                     double kinetic_before) {
+  const Car& car = world.car(dc.id);
+  CrashMetrics& mt = dc.metrics;
+  const deform::BodyState& s = dc.body->state();
+
+  // Divergence (MuJoCo-style): non-finite or beyond 1e10 anywhere.
+  auto bad = [](const Eigen::Vector3d& v) { return !v.allFinite() || v.cwiseAbs().maxCoeff() > 1e10; };
+  for (const auto& x : s.positions_m)
+    if (bad(x)) mt.diverged = true;
+  if (bad(car.bodyPose().position_m) || bad(car.velocity_mps())) mt.diverged = true;
+
+  if (!mt.impacted && !dc.touching.empty()) {
+    // First impact with the first thing touched: velocities before the step, positions now.
+    const EntityRef other = dc.touching.front();
+    mt.impacted = true;
+    dc.impact_other = other;
+    dc.impact_relative_velocity_mps = velocity_before - velocityBefore(other);
+    dc.impact_com_m = car.bodyPose().position_m;
+    dc.impact_other_m = interiorPoint(worldShapeOf(other));
+    dc.impact_normal_sum.setZero();
+    dc.impact_steps = 0;
+    mt.energy.kinetic_initial_J = kinetic_before;
+    dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
+    dc.damping_at_impact_J = dc.damping_loss_J;
+    dc.contact_work_at_impact_J = dc.contact_work_J;
+  }
+  // The impact normal: the depth-weighted normals of the contacts with what was hit over the first 10 ms
+  // (the very first contact of two rounded fronts can have any normal).
+  const int settle_steps = std::max(1, static_cast<int>(std::lround(0.01 / world.fixedDt_s())));
+  if (mt.impacted && dc.impact_steps < settle_steps) {
+    ++dc.impact_steps;
+    for (const CarContact& c : world.carContacts(dc.id))
+      if (c.other == dc.impact_other)
+        dc.impact_normal_sum += (c.depth_m + 1e-6) * (car.vehiclePose().orientation * c.normal);
+    if (dc.impact_normal_sum.norm() > 1e-12) {
+      dc.impact_normal = dc.impact_normal_sum.normalized();
+      // Crash tests measure along the road: a mostly horizontal normal is taken horizontal, so the car's
+      // pitching and bouncing do not count as rebound.
+      const Eigen::Vector3d horizontal_normal(dc.impact_normal.x(), dc.impact_normal.y(), 0);
+      if (horizontal_normal.norm() > 0.5) dc.impact_normal = horizontal_normal.normalized();
+      const Eigen::Vector3d horizontal =
+          car.vehiclePose().orientation.conjugate() * Eigen::Vector3d(-dc.impact_normal);
+      dc.impact_direction_vehicle = Eigen::Vector3d(horizontal.x(), horizontal.y(), 0);
+      if (dc.impact_direction_vehicle.norm() < 1e-6) dc.impact_direction_vehicle = Eigen::Vector3d::UnitX();
+      mt.impact_speed_mps = std::max(0.0, -dc.impact_relative_velocity_mps.dot(dc.impact_normal));
+      dc.impact_separation_m = dc.impact_normal.dot(dc.impact_com_m - dc.impact_other_m);
+    }
+  }
+
+  mt.max_deviation_m = std::max(mt.max_deviation_m, deform::maxDeviation(*dc.body_settings, s));
+  deform::Penetration pen;
+  for (const auto& shape : dc.shapes.exactShapes())
+    for (const auto& x : s.positions_m)
+      if (deform::penetration(shape, x, pen))
+        mt.max_penetration_m = std::max(mt.max_penetration_m, pen.depth_m);
+
+  if (!mt.impacted) return;
+  // The rebound is the separation speed: measured while the car touches what it hit and in the step it
+  // leaves it, never afterwards (a car steering away from a wall it grazed is not a rebound).
+  const bool in_contact =
+      std::find(dc.touching.begin(), dc.touching.end(), dc.impact_other) != dc.touching.end();
+  const Eigen::Vector3d relative = car.velocity_mps() - velocityOf(dc.impact_other);
+  if (in_contact || dc.in_contact)
+    mt.rebound_speed_mps = std::max(mt.rebound_speed_mps, relative.dot(dc.impact_normal));
+  dc.in_contact = in_contact;
+  mt.restitution = mt.impact_speed_mps > 1e-9 ? mt.rebound_speed_mps / mt.impact_speed_mps : 0.0;
+  const double separation =
+      dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(dc.impact_other)));
+  mt.max_dynamic_crush_m = std::max(mt.max_dynamic_crush_m, dc.impact_separation_m - separation);
+  if (separation < 0) mt.tunnelled = true;
+
+  EnergyTerms& e = mt.energy;
+  e.crush_work_J += dc.step_crush_work_J;
+  e.other_work_J += dc.step_other_work_J;
+  e.plastic_work_J = s.plastic_work_J - dc.plastic_at_impact_J;
+  e.kinetic_final_J = kineticEnergy(car);
+  e.damping_loss_J = dc.damping_loss_J - dc.damping_at_impact_J;
+  e.body_energy_J = deform::bodyEnergy(*dc.body_settings, s).total_J();
+  e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
+  e.dissipated_J = e.damping_loss_J + e.other_work_J;
+  e.balance_error_J = e.crush_work_J - e.plastic_work_J - e.damping_loss_J - e.body_energy_J;
+}
+
+CrashMetrics Simulation::metrics(CarId car) const {
+  const DeformableCar& dc = impl_->of(car);
+  CrashMetrics out = dc.metrics;
+  if (!out.impacted) return out;
+  // At the height of the struck end's most protruding rest point (the bumper, for a frontal impact).
+  const auto& rest = dc.body_settings->rest_positions_m;
+  std::size_t lead = 0;
+  for (std::size_t i = 1; i < rest.size(); ++i)
+    if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;
+  const std::vector<double> crush =
+      crushProfile(dc.mesh, dc.body->state().positions_m, dc.impact_direction_vehicle, rest[lead].z());
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    out.max_dent_m =
+        std::max(out.max_dent_m,
+                 -(dc.body->state().positions_m[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
+  if (!crush.empty()) {
+    double sum = 0;
+    for (double c : crush) {
+      sum += c;
+      out.max_residual_crush_m = std::max(out.max_residual_crush_m, c);
+    }
+    out.residual_crush_m = sum / static_cast<double>(crush.size());
+  }
+  return out;
+}
+
+}  // namespace vehicle

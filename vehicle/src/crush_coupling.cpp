@@ -1,0 +1,167 @@
+// One deformable car's step in the crush coupling (simulation.hpp; DESIGN.md section 5): what it touches
+// becomes deform's moving contacts, deform steps with the chassis as its heavy core, and the reaction goes
+// to the chassis in the same step.
+#include "simulation_impl.hpp"
+
+#include <deform/masses.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace vehicle {
+
+/// An obstacle standing on the ground: its lowest point within 5 cm of z = 0 and, for a post or a box, an
+/// axis within 30 degrees of the vertical. Only such an obstacle is extended into the ground (so a point
+/// deep in a wall is never pushed out under it): a knocked-over tree lying from the ground across the
+/// bonnet, extended 2 m down, would be a slab through the car's front.
+bool standsOnGround(const ObstacleShape& shape) {
+  if (shape.type == ShapeType::HalfSpace || supportPoint(shape, -Eigen::Vector3d::UnitZ()).z() >= 0.05)
+    return false;
+  const double upright = std::cos(std::numbers::pi / 6);
+  if (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule) {
+    const Eigen::Vector3d along = shape.b_m - shape.a_m;
+    return std::abs(along.z()) > upright * along.norm();
+  }
+  if (shape.type == ShapeType::Box) return shape.axes.row(2).cwiseAbs().maxCoeff() > upright;  // unit axes
+  return true;
+}
+
+void Simulation::Impl::stepCar(DeformableCar& dc) {
+  Car& car = world.car(dc.id);
+  const Pose frame = car.vehiclePose();
+  const Eigen::Quaterniond to_vehicle = frame.orientation.conjugate();
+  const double dt = world.fixedDt_s();
+  const std::vector<CarContact> contacts = world.carContacts(dc.id);
+  const bool crush = dc.settings.coupling == Coupling::Crush;
+
+  // What the car touches (not the ground, not ramps), each once.
+  dc.touching.clear();
+  for (const CarContact& c : contacts)
+    if (crushable(world, c.other) &&
+        std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
+      dc.touching.push_back(c.other);
+
+  // The obstacles where they are at the end of the step (vehicle frame), with their velocities relative to
+  // the chassis: deform moves them along those through its substeps.
+  deform::StepInputs inputs;
+  inputs.contact_friction = dc.settings.contact_friction;
+  dc.shapes.clear();
+  for (const EntityRef& other : dc.touching) {
+    const ObstacleShape world_shape = worldShapeOf(other);
+    const ObstacleShape local = transformShape(world_shape, frame);
+    const Eigen::Vector3d relative_mps = to_vehicle * (velocityOf(other) - car.velocity_mps());
+    // Sweep away from the car, against the contact normals. A point can be as deep as the deepest contact
+    // at the start of the step plus the step's closing travel; twice that keeps the near face the nearest.
+    Eigen::Vector3d normal{0, 0, 0};
+    double deepest_m = 0;
+    for (const CarContact& c : contacts)
+      if (c.other == other) {
+        normal += c.normal;
+        deepest_m = std::max(deepest_m, c.depth_m);
+      }
+    Eigen::Vector3d sweep{0, 0, 0};
+    if (normal.norm() > 1e-12) {
+      normal.normalize();
+      const double closing = std::max(0.0, relative_mps.dot(normal));
+      sweep = -(2.0 * (deepest_m + closing * dt) + 0.05) * normal;
+    }
+    // An obstacle standing on the ground reaches into it.
+    Eigen::Vector3d down{0, 0, 0};
+    if (standsOnGround(world_shape)) down = to_vehicle * Eigen::Vector3d(0, 0, -2.0);
+    const bool post =
+        other.kind == EntityRef::Kind::Obstacle && world.obstacleKind(other.index) == ObstacleKind::Post;
+    // Every obstacle is met between the control points too (face contacts): a post or another car's
+    // corner thinner than the point spacing pushes the faces and edges it meets, at any level of detail.
+    dc.shapes.add(local, sweep, down, post, true);
+    inputs.contact_velocity_mps.push_back(relative_mps);
+  }
+  inputs.contacts = dc.shapes.shapes();
+  inputs.surface_contact = dc.shapes.surfaceFlags();
+  // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
+  // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
+  if (crush) inputs.core_mass_kg = car.mass_kg();
+
+  // Visual (and vegetation in either coupling): the contact impulses go to the nearest control points
+  // (inverse-distance weights).
+  const deform::BodyState& state = dc.body->state();
+  if (dc.settings.visual_impulse_scale > 0) {
+    constexpr std::size_t kNearest = 4;
+    const bool visual = !crush;
+    for (const CarContact& c : contacts) {
+      const bool dents = (visual && crushable(world, c.other)) || vegetation(world, c.other);
+      if (!dents || c.impulse_N_s.squaredNorm() == 0) continue;
+      std::vector<std::pair<double, uint32_t>> near;
+      for (uint32_t p = 0; p < state.positions_m.size(); ++p)
+        near.emplace_back((state.positions_m[p] - c.point_m).norm(), p);
+      const std::size_t k = std::min(kNearest, near.size());
+      std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+      double total = 0;
+      for (std::size_t j = 0; j < k; ++j) total += 1.0 / (near[j].first + 0.05);
+      for (std::size_t j = 0; j < k; ++j)
+        inputs.impulses.push_back(
+            {near[j].second,
+             dc.settings.visual_impulse_scale * (1.0 / (near[j].first + 0.05)) / total * c.impulse_N_s});
+    }
+  }
+
+  if (dc.settings.inertial_scale > 0) {
+    inputs.chassis.acceleration_mps2 = to_vehicle * ((car.velocity_mps() - dc.previous_velocity_mps) / dt);
+    inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
+    inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
+  }
+
+  dc.plastic_before_step_J = state.plastic_work_J;
+  const deform::StepReport report = dc.body->step(inputs, dt);
+  dc.damping_loss_J += report.damping_loss_J;
+  dc.contact_work_J += report.contact_work_J;
+
+  // Reaction, equal and opposite in this step: the momentum the body handed its core goes to the chassis
+  // (and the core's travel within the step to its position); the momentum the obstacles gave the points
+  // goes back to a free obstacle (a pushed box), at the contact points' centre.
+  dc.step_crush_work_J = 0;
+  if (crush) {
+    const double kinetic_before_J = kineticEnergy(car);
+    world.applyImpulse({EntityRef::Kind::Car, dc.id}, frame.orientation * report.core_impulse_Ns,
+                       frame.toWorld(dc.body_settings->core_m),
+                       frame.orientation * report.core_angular_impulse_Nms);
+    world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
+    dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
+    if (report.contact_impulse_Ns.squaredNorm() > 0)
+      for (const EntityRef& other : dc.touching) {
+        if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
+          continue;  // another deformable car takes its share through its own body
+        world.applyImpulse(
+            other, -(frame.orientation * report.contact_impulse_Ns) / static_cast<double>(dc.touching.size()),
+            interiorPoint(worldShapeOf(other)));
+      }
+  }
+  dc.previous_velocity_mps = car.velocity_mps();
+
+  // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5): no
+  // point has touched anything for 0.1 s, the body is at rest, and the old hull touches nothing it could
+  // crush (the new hull is convex: around a pole's notch it would fill the notch, and its backstop would
+  // throw the car off the pole).
+  if (report.contact_points > 0) {
+    dc.hull_dirty = true;
+    dc.quiet_steps = 0;
+  } else {
+    ++dc.quiet_steps;
+  }
+  const int quiet_needed = std::max(1, static_cast<int>(std::ceil(0.1 / dt)));
+  if (crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed && dc.touching.empty() &&
+      report.max_speed_mps < 0.05) {
+    const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
+    const deform::ControlMesh dented =
+        deform::buildControlMesh(dc.body->state().positions_m, n, "dented body");
+    // A body crushed through its own centre of mass (a small car, a deep dent) keeps its old hull: ODE's
+    // convex geom needs the centre inside (its planes' offsets positive), or it warns and mis-collides.
+    if (enclosesWithMargin(dented, dc.body_settings->core_m, 0.01)) {
+      car.setCollisionHull(dented);
+      const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
+      world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+    }
+    dc.hull_dirty = false;
+  }
+}
+}  // namespace vehicle

@@ -1,0 +1,125 @@
+#pragma once
+// The inside of Simulation (simulation.hpp), shared by its source files: simulation.cpp (the API and the
+// step), crush_coupling.cpp (one car's deformation and its reaction on the chassis) and
+// crash_metrics_update.cpp (what a run did to a car).
+#include <vehicle/simulation.hpp>
+
+#include "crush_shapes.hpp"
+
+#include <deform/body_settings.hpp>
+#include <deform/body_state.hpp>
+#include <deform/deformable_body.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace vehicle {
+
+/// Kinetic energy of a rigid body: translation plus rotation (I in the body axes) [J].
+double kineticEnergy(const Car& car);
+/// The one definition of what crushes the body: anything but the ground, ramps and vegetation.
+bool crushable(const World& world, EntityRef e);
+/// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
+bool vegetation(const World& world, EntityRef e);
+/// An obstacle standing on the ground (crush_coupling.cpp).
+bool standsOnGround(const ObstacleShape& shape);
+/// Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.
+bool enclosesWithMargin(const deform::ControlMesh& mesh, const Eigen::Vector3d& point, double margin_m);
+
+/// One deformable car: its body and the bookkeeping of the coupling and the metrics.
+struct DeformableCar {
+  CarId id = 0;
+  DeformationSettings settings;
+  deform::ControlMesh mesh;
+  std::shared_ptr<const deform::BodySettings> body_settings;
+  std::unique_ptr<deform::DeformableBody> body;
+  CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
+  CrushShapes substep_shapes;       ///< the same, where it is at a substep
+  std::vector<EntityRef> touching;  ///< crushable entities in contact this step
+  /// Its control points in the world before this step's deformation: what other cars dent against
+  /// (taken for every car first, so the order cars are stepped in does not matter).
+  ObstacleShape world_shape;
+
+  // Coupling.
+  bool hull_dirty = false;  ///< dented since the collision hull was last rebuilt
+  int quiet_steps = 0;      ///< steps without a control point in contact
+  Eigen::Vector3d previous_velocity_mps{0, 0, 0};
+  double previous_kinetic_J = 0;
+
+  // Metrics.
+  CrashMetrics metrics;
+  Eigen::Vector3d impact_normal{0, 0, 1};  ///< world, out of what it hit
+  Eigen::Vector3d impact_direction_vehicle{1, 0, 0};
+  EntityRef impact_other;
+  double impact_separation_m = 0;  ///< normal . (com - other's interior point) at impact [m]
+  Eigen::Vector3d impact_relative_velocity_mps{0, 0, 0};           ///< before the impact step (world) [m/s]
+  Eigen::Vector3d impact_com_m{0, 0, 0}, impact_other_m{0, 0, 0};  ///< at impact (world) [m]
+  Eigen::Vector3d impact_normal_sum{0, 0, 0};
+  int impact_steps = 0;     ///< steps of contact the impact normal has been averaged over
+  bool in_contact = false;  ///< in contact with what it hit first, last step (the rebound's window)
+  double plastic_at_impact_J = 0;
+  double plastic_before_step_J = 0;
+  double body_energy_at_impact_J = 0;  ///< elastic + kinetic energy in the body at impact [J]
+  double damping_loss_J = 0;           ///< the body's viscous loss since the start [J]
+  double damping_at_impact_J = 0;
+  double contact_work_J = 0;  ///< deform's, since the start [J]
+  double contact_work_at_impact_J = 0;
+  double step_crush_work_J = 0;  ///< kinetic energy the body's reaction took from the chassis this step [J]
+  double step_other_work_J = 0;  ///< work every other force took from it this step [J]
+};
+
+struct Simulation::Impl {
+  World world;
+  std::vector<std::unique_ptr<DeformableCar>> cars;
+  std::vector<int> index_of;  ///< per CarId: index into cars, -1 when rigid
+  StepTimings timings;
+
+  explicit Impl(const WorldSettings& s) : world(s) {}
+
+  DeformableCar& of(CarId id) const {
+    if (id >= index_of.size() || index_of[id] < 0)
+      throw std::out_of_range("car " + std::to_string(id) + " does not deform");
+    return *cars[static_cast<std::size_t>(index_of[id])];
+  }
+
+  std::vector<Eigen::Vector3d> car_velocity_before;  ///< per CarId: velocity before this step [m/s]
+  Eigen::Vector3d velocityBefore(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car && e.index < car_velocity_before.size())
+      return car_velocity_before[e.index];
+    return velocityOf(e);
+  }
+
+  Eigen::Vector3d velocityOf(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car) return world.car(e.index).velocity_mps();
+    return Eigen::Vector3d::Zero();  // obstacles: static or slow next to a car
+  }
+
+  /// The shape of `e` in the world; a deformable car as its control points now.
+  ObstacleShape worldShapeOf(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car && e.index < index_of.size() && index_of[e.index] >= 0) {
+      const DeformableCar& other = of(e.index);
+      if (!other.world_shape.vertices_m.empty()) return other.world_shape;
+      return snapshotShape(other);
+    }
+    return world.shapeOf(e);
+  }
+
+  /// A deformable car's control points now, in the world, as a convex shape.
+  ObstacleShape snapshotShape(const DeformableCar& dc) const {
+    const Pose pose = world.car(dc.id).vehiclePose();
+    ObstacleShape s;
+    s.type = ShapeType::Convex;
+    s.centre_m.setZero();
+    for (const auto& p : dc.body->state().positions_m) {
+      s.vertices_m.push_back(pose.toWorld(p));
+      s.centre_m += s.vertices_m.back();
+    }
+    s.centre_m /= static_cast<double>(s.vertices_m.size());
+    return s;
+  }
+
+  void stepCar(DeformableCar& dc);
+  void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before, double kinetic_before);
+};
+
+}  // namespace vehicle
