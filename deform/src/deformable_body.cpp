@@ -325,13 +325,13 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   Eigen::Vector3d spoke_twist{0, 0, 0};    // sum of anchor x m_i dx_i: the spokes' moment on the points
   Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
   Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
-  contact_shift_m_.assign(n, Eigen::Vector3d::Zero());
-  contact_velocity_.assign(n, Eigen::Vector3d::Zero());
-  // A correction by obstacle `shape` of point `i` (its momentum x h, and what moved it, for the energy).
+  // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
+  // impulse J = m dx / h against the obstacle's velocity relative to the core.
+  double contact_work_x_h = 0;
   auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
     contact_push += m[i] * dx;
-    contact_shift_m_[i] += dx;
-    if (shape < inputs.contact_velocity_mps.size()) contact_velocity_[i] = inputs.contact_velocity_mps[shape];
+    if (shape < inputs.contact_velocity_mps.size())
+      contact_work_x_h += m[i] * dx.dot(inputs.contact_velocity_mps[shape] - core_velocity_mps_);
   };
   for (uint32_t it = 0; it < params_.iterations; ++it) {
     for (std::size_t k = 0; k < edge_count; ++k) {
@@ -339,17 +339,22 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
       projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
                       edge_lambda_[k]);
     }
+    // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
+    // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
+    // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
+    Eigen::Vector3d sweep_pull{0, 0, 0};
     for (std::size_t k = 0; k < spoke_count; ++k) {
       const SpokeConstraint& c = spokes[k];
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];
       projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
                    spoke_lambda_[k]);
-      core = anchor - anchors[k];
       const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
-      spoke_pull_Ns += pull;
+      sweep_pull += pull;
       spoke_twist += anchors[k].cross(pull);
     }
+    spoke_pull_Ns += sweep_pull;
+    core -= w_core * sweep_pull;
     for (std::size_t k = 0; k < bend_count; ++k) {
       const BendConstraint& c = bends[k];
       projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k],
@@ -404,13 +409,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
 
   // Velocities from positions (Verlet style; XPBD Algorithm 1, line 16).
   for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
-  // The contacts' work: impulse J = m dx / h against the obstacle's velocity (relative to the core).
-  for (std::size_t i = 0; i < n; ++i) {
-    if (contact_shift_m_[i].squaredNorm() == 0) continue;
-    const Eigen::Vector3d impulse = m[i] * contact_shift_m_[i] * inv_h;
-    const Eigen::Vector3d obstacle = contact_velocity_[i] - core_velocity_mps_;
-    report.contact_work_J += impulse.dot(obstacle);
-  }
+  report.contact_work_J += contact_work_x_h * inv_h;
   core_velocity_mps_ = (core - core_start) * inv_h;
   core_shift_m_ = core - settings.core_m;
   to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;

@@ -122,10 +122,8 @@ class DeformableBody {
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
-  std::vector<uint8_t> touched_;                   ///< per point: in contact with the obstacle being searched
-  std::vector<Eigen::Vector3d> contact_shift_m_;   ///< per point: how far the obstacles moved it this substep
-  std::vector<Eigen::Vector3d> contact_velocity_;  ///< per point: the velocity of what moved it [m/s]
-  std::vector<ContactShape> placed_;               ///< the obstacles where they are in the current substep
+  std::vector<uint8_t> touched_;         ///< per point: in contact with the obstacle being searched
+  std::vector<ContactShape> placed_;     ///< the obstacles where they are in the current substep
   std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
   Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
