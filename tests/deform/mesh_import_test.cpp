@@ -451,7 +451,7 @@ ImportOptions opts(double scale, std::optional<Axis> up = {}, std::optional<Axis
 TEST_CASE("every shared mesh loads upright, along +X, at real-world size", "[import]") {
   const std::optional<std::string> meshes = test_support::testMeshesDir();
   if (!meshes) {
-    WARN("DEFORM_TEST_MESHES is not set: skipping the shared third-party meshes");
+    test_support::reportSkip("DEFORM_TEST_MESHES is not set: the shared third-party meshes are not loaded");
     return;
   }
   const SharedMesh cases[] = {
@@ -498,7 +498,7 @@ TEST_CASE("every shared mesh loads upright, along +X, at real-world size", "[imp
 TEST_CASE("shared meshes: units and axes the format declares are honoured", "[import]") {
   const std::optional<std::string> meshes = test_support::testMeshesDir();
   if (!meshes) {
-    WARN("DEFORM_TEST_MESHES is not set: skipping the shared third-party meshes");
+    test_support::reportSkip("DEFORM_TEST_MESHES is not set: the shared third-party meshes are not loaded");
     return;
   }
   // The pickup declares Z_UP and inches: without options it is upright, in metres, lying along file Y.

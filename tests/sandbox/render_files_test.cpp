@@ -11,6 +11,7 @@
 #include "render/png_io.hpp"
 #include "render/video_writer.hpp"
 #include "render_test_support.hpp"
+#include "support.hpp"
 
 using namespace sandbox::render;
 namespace fs = std::filesystem;
@@ -120,7 +121,7 @@ TEST_CASE("PNG failures name the path and leave no file behind", "[render]") {
 
 TEST_CASE("VideoWriter makes an MP4 that ffprobe decodes frame by frame", "[render]") {
   if (!VideoWriter::available("ffmpeg") || !VideoWriter::available("ffprobe")) {
-    WARN("ffmpeg or ffprobe is not installed: video test skipped");
+    test_support::reportSkip("ffmpeg or ffprobe is not installed: the video test needs them");
     return;
   }
   const fs::path dir = render_test::scratchDir("render_video");
