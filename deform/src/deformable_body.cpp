@@ -85,6 +85,7 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   alpha_radps2_ = chassis.angular_acceleration_radps2;
 
   StepReport report;
+  report.contact_impulse_per_obstacle_Ns.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
   bool load_changed = false;
   if (state_.sleeping) {
     load_changed = loadChanged();
@@ -330,6 +331,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   double contact_work_x_h = 0;
   auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
     contact_push += m[i] * dx;
+    report.contact_impulse_per_obstacle_Ns[shape] += (m[i] * inv_h) * dx;
     if (shape < inputs.contact_velocity_mps.size())
       contact_work_x_h += m[i] * dx.dot(inputs.contact_velocity_mps[shape] - core_velocity_mps_);
   };
@@ -375,26 +377,14 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   }
   Eigen::Vector3d tie_push{0, 0, 0};  // sum of m_i dx_i by the shell orientation and visual constraints
 
-  // The shell stays bolted to the chassis: no rotation of the whole shell about the core
-  // (removeShellRotation, on the displacements from the rest shape carried along with the core).
+  // The shell stays bolted to the chassis: no rotation of the whole shell about the core, whose
+  // reaction is the opposite of the shell's angular impulse; and the spokes pull at their anchors, off
+  // the core: the moment of their reaction on it.
   const Eigen::Vector3d shift = core - settings.core_m;
-  {
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d r = settings.rest_positions_m[i] - settings.core_m;
-      g += m[i] * r.cross(x[i] - shift - settings.rest_positions_m[i]);
-    }
-    const Eigen::Vector3d mu = -(settings.shell_inverse_inertia * g);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d dx = mu.cross(settings.rest_positions_m[i] - settings.core_m);
-      x[i] += dx;
-      tie_push += m[i] * dx;
-    }
-    // The shell took the angular impulse A mu / h = -g / h about the core; the core takes the opposite.
-    report.core_angular_impulse_Nms += g * inv_h;
-    // The spokes pull at their anchors, off the core: the moment of their reaction on it.
-    report.core_angular_impulse_Nms -= spoke_twist * inv_h;
-  }
+  const Eigen::Vector3d shell_defect =
+      removeShellRotation(x.data(), settings.rest_positions_m.data(), m.data(), n, settings.core_m,
+                          settings.shell_inverse_inertia, shift, tie_push);
+  report.core_angular_impulse_Nms += (shell_defect - spoke_twist) * inv_h;
 
   // Visual constraint, the last projection of the substep (Kenwright 2015, "Visual Constraints").
   for (std::size_t i = 0; i < n; ++i) {

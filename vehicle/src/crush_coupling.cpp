@@ -127,14 +127,14 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
                        frame.orientation * report.core_angular_impulse_Nms);
     world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
     dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
-    if (report.contact_impulse_Ns.squaredNorm() > 0)
-      for (const EntityRef& other : dc.touching) {
-        if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
-          continue;  // another deformable car takes its share through its own body
-        world.applyImpulse(
-            other, -(frame.orientation * report.contact_impulse_Ns) / static_cast<double>(dc.touching.size()),
-            interiorPoint(worldShapeOf(other)));
-      }
+    for (std::size_t k = 0; k < dc.touching.size(); ++k) {  // one contact shape per touched entity
+      const EntityRef& other = dc.touching[k];
+      if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
+        continue;  // another deformable car takes its share through its own body
+      const Eigen::Vector3d impulse = report.contact_impulse_per_obstacle_Ns[k];
+      if (impulse.squaredNorm() > 0)
+        world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
+    }
   }
   dc.previous_velocity_mps = car.velocity_mps();
 

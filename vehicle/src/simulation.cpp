@@ -125,7 +125,6 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
     impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
   const Car& c = impl_->world.car(id);
   dc->previous_velocity_mps = c.velocity_mps();
-  dc->previous_kinetic_J = kineticEnergy(c);
   if (impl_->index_of.size() <= id) impl_->index_of.resize(id + 1, -1);
   impl_->index_of[id] = static_cast<int>(impl_->cars.size());
   impl_->cars.push_back(std::move(dc));

@@ -34,7 +34,6 @@ struct DeformableCar {
   std::shared_ptr<const deform::BodySettings> body_settings;
   std::unique_ptr<deform::DeformableBody> body;
   CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
-  CrushShapes substep_shapes;       ///< the same, where it is at a substep
   std::vector<EntityRef> touching;  ///< crushable entities in contact this step
   /// Its control points in the world before this step's deformation: what other cars dent against
   /// (taken for every car first, so the order cars are stepped in does not matter).
@@ -44,7 +43,6 @@ struct DeformableCar {
   bool hull_dirty = false;  ///< dented since the collision hull was last rebuilt
   int quiet_steps = 0;      ///< steps without a control point in contact
   Eigen::Vector3d previous_velocity_mps{0, 0, 0};
-  double previous_kinetic_J = 0;
 
   // Metrics.
   CrashMetrics metrics;

@@ -134,14 +134,23 @@ inline bool projectVisual(Eigen::Vector3d& x, const Eigen::Vector3d& x0, double 
 ///   G(x) = sum_i m_i r_i x (x_i - x0_i) = 0,  r_i = x0_i - core
 /// (linear in x, so one PBD projection, d_x_i = mu x r_i with A mu = -G, A = sum_i m_i (|r_i|^2 I - r_i
 /// r_i^T) the shell's inertia about the core, meets it exactly). `inverse_inertia` is A^-1. A dent,
-/// being radial, has no rotation and is left alone.
-inline void removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0, const double* mass_kg,
-                                std::size_t n, const Eigen::Vector3d& core_m,
-                                const Eigen::Matrix3d& inverse_inertia) {
+/// being radial, has no rotation and is left alone. `shift_m` is how far the core (and the rest shape
+/// with it) has moved from `core_m`. Returns G before the projection [kg m^2]: the shell took the angular
+/// impulse A mu / h = -G / h about the core. Adds sum_i m_i d_x_i to `push` [kg m].
+inline Eigen::Vector3d removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0,
+                                           const double* mass_kg, std::size_t n,
+                                           const Eigen::Vector3d& core_m,
+                                           const Eigen::Matrix3d& inverse_inertia,
+                                           const Eigen::Vector3d& shift_m, Eigen::Vector3d& push) {
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < n; ++i) g += mass_kg[i] * (x0[i] - core_m).cross(x[i] - x0[i]);
+  for (std::size_t i = 0; i < n; ++i) g += mass_kg[i] * (x0[i] - core_m).cross(x[i] - shift_m - x0[i]);
   const Eigen::Vector3d mu = -(inverse_inertia * g);
-  for (std::size_t i = 0; i < n; ++i) x[i] += mu.cross(x0[i] - core_m);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d dx = mu.cross(x0[i] - core_m);
+    x[i] += dx;
+    push += mass_kg[i] * dx;
+  }
+  return g;
 }
 
 /// How far one constraint may be stretched or shortened elastically before its rest length flows [m]:

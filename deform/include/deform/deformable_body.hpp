@@ -34,6 +34,8 @@ struct StepReport {
   Eigen::Vector3d core_velocity_mps{0, 0, 0};
   /// Momentum the obstacles gave the points (contact push-out and friction, face contacts) [N s].
   Eigen::Vector3d contact_impulse_Ns{0, 0, 0};
+  /// The same per entry of StepInputs::contacts, for the reaction on each obstacle [N s].
+  std::vector<Eigen::Vector3d> contact_impulse_per_obstacle_Ns;
   /// Energy the viscous damping took out of the points' motion relative to the core [J].
   double damping_loss_J = 0;
   /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the

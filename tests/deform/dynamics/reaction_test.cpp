@@ -62,6 +62,9 @@ TEST_CASE("Newton's third law between the core and the body, step by step", "[dy
     // The heavy core moved by what it took (its velocity comes from its positions: rounding of 1e-12 m
     // over a 0.5 ms substep, times 1500 kg).
     CHECK((r.core_velocity_mps * core_mass_kg - r.core_impulse_Ns).norm() <= 1e-7 * scale);
+    // The obstacles' momentum, per obstacle, adds up to the total (each one's reaction goes back to it).
+    REQUIRE(r.contact_impulse_per_obstacle_Ns.size() == 1);
+    CHECK((r.contact_impulse_per_obstacle_Ns[0] - r.contact_impulse_Ns).norm() <= 1e-9 * scale);
     core_velocity += r.core_velocity_mps;
     total_core += r.core_impulse_Ns;
   }
