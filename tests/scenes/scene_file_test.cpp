@@ -1,5 +1,7 @@
 // Scene files are read strictly: every refusal names the file and the key path; --set overrides are
 // checked as strictly as the file; every shipped scene parses.
+#include "support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <scenes/scene_file.hpp>
@@ -171,7 +173,7 @@ TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
     CHECK(std::find(names.begin(), names.end(), expected) != names.end());
   }
   for (const std::string& name : names) {
-    if (name == "real_mesh" && !std::getenv("DEFORM_TEST_MESHES")) {
+    if (name == "real_mesh" && !test_support::testMeshesDir()) {
       CHECK_THROWS_WITH(scenes::loadScene(name), Catch::Contains("DEFORM_TEST_MESHES"));
       continue;
     }

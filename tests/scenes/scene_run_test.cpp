@@ -1,5 +1,7 @@
 // Playing scenes headless: every shipped scene runs to its end without divergence, runs are
 // deterministic (same state hash), and the wall crash gives a plausible dent.
+#include "support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <scenes/scene_file.hpp>
@@ -11,7 +13,7 @@
 
 TEST_CASE("every shipped scene runs headless to its end without divergence", "[run]") {
   for (const std::string& name : scenes::shippedSceneNames()) {
-    if (name == "real_mesh" && !std::getenv("DEFORM_TEST_MESHES")) {
+    if (name == "real_mesh" && !test_support::testMeshesDir()) {
       WARN("real_mesh skipped: set DEFORM_TEST_MESHES to the shared meshes folder");
       continue;
     }
