@@ -33,16 +33,43 @@ DeformableBody::DeformableBody(std::shared_ptr<const BodySettings> settings, con
   spoke_lambda_.resize(settings_->spokes.size());
   bend_lambda_.resize(settings_->bends.size());
   for (double r : settings_->spoke_rest_m) radius_m_ = std::max(radius_m_, r);
+  refreshYieldForces();
 }
 
 void DeformableBody::setState(BodyState state) {
   checkSizes(*settings_, state);
   state_ = std::move(state);
+  rigid_moments_.valid = false;
+  refreshYieldForces();
+}
+
+void DeformableBody::refreshYieldForces() {
+  const BodySettings& s = *settings_;
+  const auto& laws = s.plastic_laws;
+  edge_yield_N_.resize(s.edges.size());
+  spoke_yield_N_.resize(s.spokes.size());
+  bend_yield_N_.resize(s.bends.size());
+  if (!params_.yield_limited) {  // unlimited: the solver may carry any force, plasticity follows
+    std::fill(edge_yield_N_.begin(), edge_yield_N_.end(), YieldForce{});
+    std::fill(spoke_yield_N_.begin(), spoke_yield_N_.end(), YieldForce{});
+    std::fill(bend_yield_N_.begin(), bend_yield_N_.end(), YieldForce{});
+    return;
+  }
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    edge_yield_N_[k] = yieldForce(s.edges[k].compliance_m_per_N, state_.edge_rest_m[k], s.edge_rest_m[k],
+                                  s.edge_yield[k], laws[s.edges[k].material]);
+  for (std::size_t k = 0; k < s.spokes.size(); ++k)
+    spoke_yield_N_[k] = yieldForce(s.spokes[k].compliance_m_per_N, state_.spoke_rest_m[k], s.spoke_rest_m[k],
+                                   s.spoke_yield[k], laws[s.spokes[k].material]);
+  for (std::size_t k = 0; k < s.bends.size(); ++k)
+    bend_yield_N_[k] = yieldForce(s.bends[k].compliance_m_per_N, state_.bend_rest_m[k], s.bend_rest_m[k],
+                                  s.bend_yield[k], laws[s.bends[k].material]);
 }
 
 void DeformableBody::setParams(const SolverParams& params) {
   checkSolverParams(params);
   params_ = params;
+  refreshYieldForces();
 }
 
 bool DeformableBody::loadChanged() const {
@@ -92,9 +119,11 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
     if (inputs.contacts.empty() && inputs.impulses.empty() && !load_changed) {
       report.asleep = true;
       state_.time_s += dt_s;
+      rigidShellLoad(dt_s, report);
       return report;
     }
     state_.sleeping = false;
+    rigid_moments_.valid = false;
     if (load_changed || !inputs.impulses.empty()) state_.sleep_timer_s = 0;
   }
 
@@ -110,6 +139,7 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
     placeObstacles(inputs, static_cast<double>(substeps - k) * h);
     substep(h, placed_, inputs, report);
   }
+  last_substep_s_ = h;
   state_.time_s += dt_s;
   // Re-centre on the core: positions and velocities stay relative to it; the caller moves its rigid body.
   report.core_displacement_m = core_shift_m_;
@@ -129,12 +159,57 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   state_.sleep_timer_s = quiet ? state_.sleep_timer_s + dt_s : 0.0;
   if (quiet && params_.sleep_delay_s >= 0 && state_.sleep_timer_s >= params_.sleep_delay_s) {
     state_.sleeping = true;
+    rigid_moments_.valid = false;
     for (Eigen::Vector3d& v : state_.velocities_mps) v.setZero();
     state_.sleep_load_mps2 = load_mps2_;
     state_.sleep_angular_velocity_radps = omega_radps_;
     state_.sleep_angular_acceleration_radps2 = alpha_radps2_;
   }
   return report;
+}
+
+double DeformableBody::carriedElasticEnergy_J() const {
+  if (!(last_substep_s_ > 0)) return 0;
+  const BodySettings& s = *settings_;
+  const double inv_h2 = 1.0 / (last_substep_s_ * last_substep_s_);
+  double energy_J = 0;
+  auto add = [&](double compliance_m_per_N, double lambda) {
+    const double force_N = lambda * inv_h2;
+    energy_J += 0.5 * compliance_m_per_N * force_N * force_N;
+  };
+  for (std::size_t k = 0; k < s.edges.size(); ++k) add(s.edges[k].compliance_m_per_N, edge_lambda_[k]);
+  for (std::size_t k = 0; k < s.spokes.size(); ++k) add(s.spokes[k].compliance_m_per_N, spoke_lambda_[k]);
+  for (std::size_t k = 0; k < s.bends.size(); ++k) add(s.bends[k].compliance_m_per_N, bend_lambda_[k]);
+  return energy_J;
+}
+
+void DeformableBody::rigidShellLoad(double dt_s, StepReport& report) {
+  // A sleeping shell moves with its core as one rigid body: the spokes hold every point against its
+  // inertial load a_i = load - alpha x r_i - omega x (omega x r_i) (v = 0), so the core takes
+  //   impulse = dt (M load - alpha x S - omega x (omega x S)),
+  //   moment  = dt (S x load - I alpha - omega x (I omega)),
+  // with M, S = sum m r and I = sum m (|r|^2 E - r r^T) of the frozen shell about the core.
+  if (params_.inertial_scale <= 0) return;
+  if (!rigid_moments_.valid) {
+    const BodySettings& settings = *settings_;
+    RigidMoments moments;
+    for (std::size_t i = 0; i < settings.pointCount(); ++i) {
+      const Eigen::Vector3d r = state_.positions_m[i] - settings.core_m;
+      const double m = settings.mass_kg[i];
+      moments.mass_kg += m;
+      moments.first_moment_kgm += m * r;
+      moments.inertia_kgm2 += m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    moments.valid = true;
+    rigid_moments_ = moments;
+  }
+  const RigidMoments& m = rigid_moments_;
+  const double scale = params_.inertial_scale * dt_s;
+  const Eigen::Vector3d& s = m.first_moment_kgm;
+  report.core_impulse_Ns +=
+      scale * (m.mass_kg * load_mps2_ - alpha_radps2_.cross(s) - omega_radps_.cross(omega_radps_.cross(s)));
+  report.core_angular_impulse_Nms += scale * (s.cross(load_mps2_) - m.inertia_kgm2 * alpha_radps2_ -
+                                              omega_radps_.cross(m.inertia_kgm2 * omega_radps_));
 }
 
 Eigen::Vector3d DeformableBody::ShiftedSupport::support(const void* user, const Eigen::Vector3d& direction) {
@@ -170,7 +245,8 @@ void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
   }
 }
 
-uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs) {
+uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs,
+                                      double h) {
   // Points inside an obstacle or within the margin of it: a point resting on a surface at the start of
   // the substep stays held by its (inactive until violated) contact instead of sinking in for a substep
   // and being thrown out the next, a jitter.
@@ -183,8 +259,11 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     const ContactShape& shape = shapes[k];
     const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
     if (surface) touched_.assign(x.size(), 0);
+    Eigen::Vector3d obstacle_moved_m = Eigen::Vector3d::Zero();
+    if (k < inputs.contact_velocity_mps.size()) obstacle_moved_m = h * inputs.contact_velocity_mps[k];
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
+        if (p.depth_m > 0) enteredAt(shape, previous_m_[i] - obstacle_moved_m, x[i], p);
         contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
         if (surface && p.depth_m > 0) touched_[i] = 1;
@@ -192,6 +271,29 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k));
   }
   return inside;
+}
+
+void DeformableBody::enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m,
+                               const Eigen::Vector3d& end_m, Penetration& p) {
+  // A point that came in through a face this substep goes back out through it, not through whichever
+  // face is nearest now: in a thin wall met faster than half its thickness per substep the nearest face
+  // is the far one, and the point would pass through. The entry is found by bisection of the point's
+  // path relative to the obstacle (start outside, end inside); `p` becomes the contact at that face.
+  constexpr int kBisections = 12;  // the entry to 1/4096 of the substep's travel
+  Penetration probe;
+  if (penetration(shape, start_m, probe)) return;  // inside already: the nearest face stands
+  Eigen::Vector3d outside = start_m, inside = end_m;
+  for (int k = 0; k < kBisections; ++k) {
+    const Eigen::Vector3d middle = 0.5 * (outside + inside);
+    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside : outside) = middle;
+  }
+  if (!penetration(shape, inside, probe) || !(probe.depth_m > 0)) return;
+  // The plane of the entry face, and the end point's depth below it.
+  const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;
+  const double depth_m = probe.normal.dot(surface_m - end_m);
+  if (depth_m <= p.depth_m) return;  // the nearest face is the entry face
+  p.normal = probe.normal;
+  p.depth_m = depth_m;
 }
 
 uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {
@@ -307,7 +409,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   const Eigen::Vector3d core_start = core;
   core += h * core_velocity_mps_;
 
-  report.contact_points += findContacts(shapes, inputs);
+  report.contact_points += findContacts(shapes, inputs, h);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
   std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);
@@ -322,6 +424,10 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   const double* edge_rest = state_.edge_rest_m.data();
   const double* spoke_rest = state_.spoke_rest_m.data();
   const double* bend_rest = state_.bend_rest_m.data();
+  const YieldForce* edge_yield = edge_yield_N_.data();
+  const YieldForce* spoke_yield = spoke_yield_N_.data();
+  const YieldForce* bend_yield = bend_yield_N_.data();
+  const double h2 = h * h;
   const Eigen::Vector3d* anchors = settings.spoke_anchor_m.data();
   Eigen::Vector3d spoke_twist{0, 0, 0};    // sum of anchor x m_i dx_i: the spokes' moment on the points
   Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
@@ -339,7 +445,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     for (std::size_t k = 0; k < edge_count; ++k) {
       const EdgeConstraint& c = edges[k];
       projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
-                      edge_lambda_[k]);
+                      edge_lambda_[k], -h2 * edge_yield[k].stretch_N, h2 * edge_yield[k].shorten_N);
     }
     // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
     // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
@@ -350,7 +456,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];
       projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
-                   spoke_lambda_[k]);
+                   spoke_lambda_[k], -h2 * spoke_yield[k].stretch_N, h2 * spoke_yield[k].shorten_N);
       const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
       sweep_pull += pull;
       spoke_twist += anchors[k].cross(pull);
@@ -360,19 +466,24 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     for (std::size_t k = 0; k < bend_count; ++k) {
       const BendConstraint& c = bends[k];
       projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k],
-                      c.compliance_m_per_N * inv_h2, bend_lambda_[k]);
+                      c.compliance_m_per_N * inv_h2, bend_lambda_[k], -h2 * bend_yield[k].stretch_N,
+                      h2 * bend_yield[k].shorten_N);
     }
-    for (const ContactPoint& c : contacts_) {
+    for (ContactPoint& c : contacts_) {
       const Eigen::Vector3d before = x[c.point];
       projectContact(x[c.point], previous_m_[c.point], c.normal, c.surface_m, inputs.contact_friction);
+      c.moved_m += x[c.point] - before;
       movedBy(c.shape, c.point, x[c.point] - before);
     }
-    for (const FaceContact& c : face_contacts_) {
+    for (FaceContact& c : face_contacts_) {
       const auto& k = c.corners;
       const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
       const Eigen::Vector3d before[3] = {x[k[0]], x[k[1]], x[k[2]]};
       projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
-      for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) movedBy(c.shape, k[j], x[k[j]] - before[j]);
+      for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) {
+        c.moved_m[j] += x[k[j]] - before[j];
+        movedBy(c.shape, k[j], x[k[j]] - before[j]);
+      }
     }
   }
   Eigen::Vector3d tie_push{0, 0, 0};  // sum of m_i dx_i by the shell orientation and visual constraints
@@ -387,17 +498,13 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   report.core_angular_impulse_Nms += (shell_defect - spoke_twist) * inv_h;
 
   // Visual constraint, the last projection of the substep (Kenwright 2015, "Visual Constraints").
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d before = x[i];
-    if (projectVisual(x[i], settings.rest_positions_m[i] + shift, settings.max_deviation_m[i]))
-      tie_push += m[i] * (x[i] - before);
-  }
-  // Their reactions move the core too (the spokes' already did, inside projectSpoke).
   core -= w_core * tie_push;
+  capDeviation(h, inputs, core, core_start, tie_push, report);
 
   plasticity(report, core, h);
 
   // Velocities from positions (Verlet style; XPBD Algorithm 1, line 16).
+  report.contact_loss_J += contactLoss(inputs, h);
   for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
   report.contact_work_J += contact_work_x_h * inv_h;
   core_velocity_mps_ = (core - core_start) * inv_h;
@@ -405,6 +512,113 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;
   report.core_impulse_Ns += to_core_Ns;
   report.contact_impulse_Ns += contact_push * inv_h;
+}
+
+void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
+                                  const Eigen::Vector3d& core_start, Eigen::Vector3d& tie_push,
+                                  StepReport& report) {
+  const BodySettings& settings = *settings_;
+  auto& x = state_.positions_m;
+  const auto& m = settings.mass_kg;
+  const std::size_t n = settings.pointCount();
+  // A point an obstacle holds cannot give way. At its cap the car's rigid part has reached the obstacle:
+  // the core moves to the point instead (a rigid stop of the chassis, whose momentum the obstacle gives),
+  // rather than the point being pulled into the obstacle and, through a thin wall, out of its far side.
+  held_by_.assign(n, 0);
+  held_normal_.resize(n);
+  for (const ContactPoint& c : contacts_)
+    if (c.moved_m.squaredNorm() > 0) {
+      held_by_[c.point] = c.shape + 1;
+      held_normal_[c.point] = c.normal;
+    }
+  for (const FaceContact& c : face_contacts_)
+    for (int j = 0; j < 3; ++j)
+      if (c.moved_m[j].squaredNorm() > 0) {
+        held_by_[c.corners[j]] = c.shape + 1;
+        held_normal_[c.corners[j]] = c.normal;
+      }
+  // Jacobi over the held points, so that no point's index order decides where the stop acts: each pass
+  // moves the core by the largest step any held point needs, and that impulse acts at the held points'
+  // rest places weighted by the step each needed (a wall met squarely stops the car at the middle of its
+  // front, not at whichever point comes first).
+  constexpr int kMostStopPasses = 4;
+  for (int pass = 0; pass < kMostStopPasses && params_.yield_limited && core_inverse_mass_per_kg_ > 0;
+       ++pass) {
+    double largest_m = 0, total_m = 0;
+    std::size_t largest_point = 0;
+    Eigen::Vector3d lever_sum{0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      if (held_by_[i] == 0) continue;
+      // The obstacle pushes only along its normal: the core moves back along it by the least s >= 0 that
+      // brings the point within its cap, |d - s n| <= cap; a tangential excess is the point's own to fix.
+      const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
+      const double cap = settings.max_deviation_m[i];
+      if (d.squaredNorm() <= cap * cap) continue;
+      const double along = d.dot(held_normal_[i]);
+      const double across2 = d.squaredNorm() - along * along;
+      const double s = along - std::sqrt(std::max(0.0, cap * cap - across2));
+      if (!(s > 0)) continue;
+      total_m += s;
+      lever_sum += s * (settings.rest_positions_m[i] - settings.core_m);
+      if (s > largest_m) {
+        largest_m = s;
+        largest_point = i;
+      }
+    }
+    if (!(largest_m > 0)) break;
+    const Eigen::Vector3d move = largest_m * held_normal_[largest_point];
+    const uint32_t shape = held_by_[largest_point] - 1;
+    Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();
+    if (shape < inputs.contact_velocity_mps.size()) obstacle = inputs.contact_velocity_mps[shape];
+    const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;
+    const Eigen::Vector3d impulse_Ns = move / (core_inverse_mass_per_kg_ * h);
+    // Its loss: the impulse against the core's mean velocity relative to the obstacle (as contactLoss).
+    report.contact_loss_J -= impulse_Ns.dot(before_mps + 0.5 * move / h);
+    report.contact_impulse_per_obstacle_Ns[shape] += impulse_Ns;
+    report.contact_impulse_Ns += impulse_Ns;
+    report.core_impulse_Ns += impulse_Ns;
+    report.core_angular_impulse_Nms += (lever_sum / total_m).cross(impulse_Ns);
+    core += move;
+  }
+  // The rest are pulled back to the cap; their reactions move the heavy core, which moves every rest
+  // position, so the pass repeats until that is negligible (each pass is smaller by about shell / core
+  // mass). A point held by an obstacle no longer moves the core once it sits at its cap.
+  constexpr int kMostPasses = 8;
+  for (int pass = 0; pass < kMostPasses; ++pass) {
+    Eigen::Vector3d pass_push{0, 0, 0};
+    const Eigen::Vector3d shift = core - settings.core_m;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d before = x[i];
+      if (projectVisual(x[i], settings.rest_positions_m[i] + shift, settings.max_deviation_m[i]))
+        pass_push += m[i] * (x[i] - before);
+    }
+    tie_push += pass_push;
+    const Eigen::Vector3d core_move = -core_inverse_mass_per_kg_ * pass_push;
+    core += core_move;
+    if (core_move.squaredNorm() <= 1e-24) break;  // under 1e-12 m
+  }
+}
+
+double DeformableBody::contactLoss(const StepInputs& inputs, double h) const {
+  // Each correction's impulse J = m dx / h against the point's mean velocity over the substep relative
+  // to the obstacle, (v0 + v1) / 2 - V: its work, exactly its share of the change of 1/2 m |v - V|^2.
+  // A point stopped at a wall loses 1/2 m u^2; a point held still against it loses nothing.
+  const auto& m = settings_->mass_kg;
+  const auto& x = state_.positions_m;
+  const auto& v = state_.velocities_mps;  // still v0, the substep's start
+  auto work = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& moved) {
+    const Eigen::Vector3d obstacle = shape < inputs.contact_velocity_mps.size()
+                                         ? inputs.contact_velocity_mps[shape]
+                                         : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d mean = 0.5 * (v[i] + (x[i] - previous_m_[i]) / h) - obstacle;
+    return (m[i] / h) * moved.dot(mean);
+  };
+  double loss_J = 0;
+  for (const ContactPoint& c : contacts_) loss_J -= work(c.shape, c.point, c.moved_m);
+  for (const FaceContact& c : face_contacts_)
+    for (int j = 0; j < (c.corners[2] == c.corners[0] ? 2 : 3); ++j)
+      loss_J -= work(c.shape, c.corners[j], c.moved_m[j]);
+  return loss_J;
 }
 
 void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h) {
@@ -419,9 +633,10 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   // |l - L'| / alpha.
   const double inv_h2 = 1.0 / (h * h);
   auto flow = [&](double length, double& rest, double original, const YieldLimits& yield, uint32_t material,
-                  double compliance, double lambda) {
+                  double compliance, double lambda, YieldForce& carries) {
     const double moved = plasticRestLength(length, rest, original, yield, laws[material]);
     if (moved == rest) return;
+    if (params_.yield_limited) carries = yieldForce(compliance, moved, original, yield, laws[material]);
     // A rigid constraint (alpha = 0) has no defined yield force: its flow is counted at zero work.
     if (compliance > 0) {
       const double force_N = std::min(std::abs(lambda) * inv_h2, std::abs(length - moved) / compliance);
@@ -432,18 +647,18 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   for (std::size_t k = 0; k < settings.edges.size(); ++k) {
     const EdgeConstraint& c = settings.edges[k];
     flow((x[c.a] - x[c.b]).norm(), state_.edge_rest_m[k], settings.edge_rest_m[k], settings.edge_yield[k],
-         c.material, c.compliance_m_per_N, edge_lambda_[k]);
+         c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
   }
   for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
     const SpokeConstraint& c = settings.spokes[k];
     flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
          settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
-         spoke_lambda_[k]);
+         spoke_lambda_[k], spoke_yield_N_[k]);
   }
   for (std::size_t k = 0; k < settings.bends.size(); ++k) {
     const BendConstraint& c = settings.bends[k];
     flow((x[c.left] - x[c.right]).norm(), state_.bend_rest_m[k], settings.bend_rest_m[k],
-         settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k]);
+         settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k], bend_yield_N_[k]);
   }
   state_.plastic_work_J += work_J;
   report.plastic_work_J += work_J;

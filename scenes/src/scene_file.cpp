@@ -93,6 +93,7 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.crush_allowance_m = object->number("crush_allowance_m", s.crush_allowance_m, 0, 10);
     s.inertial_scale = object->number("inertial_scale", s.inertial_scale, 0, 10);
     s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
+    s.yield_limited = object->boolean("yield_limited", s.yield_limited);
     object->finish();
   }
   d.settings.coupling = coupling;

@@ -7,6 +7,8 @@
 
 #include <deform/error.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -58,12 +60,7 @@ Car::Car(dxWorld* world, dxSpace* space, void* geom_data, const deform::ControlM
                                   settings.centre_of_mass_offset_m);
 
   body_ = dBodyCreate(world);
-  dMass mass;
-  dMassSetZero(&mass);
-  mass.mass = settings.mass_kg;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) mass.I[4 * r + c] = inertia_kg_m2_(r, c);
-  dBodySetMass(body_, &mass);
+  setChassisMass(settings.mass_kg, inertia_kg_m2_);
 
   convex_ = std::make_unique<ConvexGeom>();
   setCollisionHull(hull);
@@ -149,6 +146,31 @@ Pose Car::wheelPose(std::size_t i) const {
                                   Eigen::AngleAxisd(s.steer_angle_rad, Eigen::Vector3d::UnitZ()) *
                                   Eigen::AngleAxisd(s.rotation_rad, Eigen::Vector3d::UnitY());
   return {hub, turn};
+}
+
+void Car::setChassisMass(double mass_kg, const Eigen::Matrix3d& inertia_kg_m2) {
+  chassis_mass_kg_ = mass_kg;
+  chassis_inertia_kg_m2_ = inertia_kg_m2;
+  dMass mass;
+  dMassSetZero(&mass);
+  mass.mass = mass_kg;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) mass.I[4 * r + c] = inertia_kg_m2(r, c);
+  dBodySetMass(body_, &mass);
+}
+
+void Car::carryShell(double shell_mass_kg, const Eigen::Matrix3d& shell_inertia_kg_m2) {
+  const double rest_kg = settings_.mass_kg - shell_mass_kg;
+  const Eigen::Matrix3d rest_inertia = inertia_kg_m2_ - shell_inertia_kg_m2;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(0.5 *
+                                                                 (rest_inertia + rest_inertia.transpose()));
+  if (!(shell_mass_kg >= 0) || !(rest_kg > 0.01 * settings_.mass_kg) ||
+      !(principal.eigenvalues().minCoeff() > 0.01 * inertia_kg_m2_.trace() / 3))
+    throw deform::InputError(
+        "vehicle.deformation.shell_mass_fraction: the shell would carry the whole car's mass or inertia "
+        "(a chassis of " +
+        std::to_string(rest_kg) + " kg is left); lower the fraction");
+  setChassisMass(rest_kg, rest_inertia);
 }
 
 void Car::setCollisionHull(const deform::ControlMesh& hull) {

@@ -30,6 +30,8 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     dc.impact_normal_sum.setZero();
     dc.impact_steps = 0;
     mt.energy.kinetic_initial_J = kinetic_before;
+    dc.elastic_at_impact_J = dc.elastic_before_step_J;
+    dc.contact_loss_at_impact_J = dc.contact_loss_before_step_J;
     dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
     dc.damping_at_impact_J = dc.damping_loss_J;
     dc.contact_work_at_impact_J = dc.contact_work_J;
@@ -83,12 +85,16 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   e.crush_work_J += dc.step_crush_work_J;
   e.other_work_J += dc.step_other_work_J;
   e.plastic_work_J = s.plastic_work_J - dc.plastic_at_impact_J;
-  e.kinetic_final_J = kineticEnergy(car);
+  e.kinetic_final_J = carKineticEnergy(dc);
   e.damping_loss_J = dc.damping_loss_J - dc.damping_at_impact_J;
-  e.body_energy_J = deform::bodyEnergy(*dc.body_settings, s).total_J();
+  e.contact_loss_J = dc.contact_loss_J - dc.contact_loss_at_impact_J;
+  const deform::BodyEnergy body = deform::bodyEnergy(*dc.body_settings, s);
+  e.body_energy_J = body.total_J();
+  e.elastic_energy_J = dc.body->carriedElasticEnergy_J() - dc.elastic_at_impact_J;
   e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
-  e.dissipated_J = e.damping_loss_J + e.other_work_J;
-  e.balance_error_J = e.crush_work_J - e.plastic_work_J - e.damping_loss_J - e.body_energy_J;
+  e.dissipated_J = e.damping_loss_J + e.contact_loss_J + e.other_work_J;
+  e.balance_error_J = e.kinetic_initial_J - e.kinetic_final_J - e.plastic_work_J - e.damping_loss_J -
+                      e.contact_loss_J - e.elastic_energy_J - e.other_work_J;
 }
 
 CrashMetrics Simulation::metrics(CarId car) const {

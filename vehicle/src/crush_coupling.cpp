@@ -80,7 +80,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   inputs.surface_contact = dc.shapes.surfaceFlags();
   // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
   // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
-  if (crush) inputs.core_mass_kg = car.mass_kg();
+  if (crush) inputs.core_mass_kg = car.chassisMass_kg();
 
   // Visual (and vegetation in either coupling): the contact impulses go to the nearest control points
   // (inverse-distance weights).
@@ -105,16 +105,34 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     }
   }
 
-  if (dc.settings.inertial_scale > 0) {
-    inputs.chassis.acceleration_mps2 = to_vehicle * ((car.velocity_mps() - dc.previous_velocity_mps) / dt);
+  // The chassis's motion over ODE's step (its forces only: the body's reaction of the last step moved the
+  // points with it). Crush: ODE moved the chassis alone, but its forces (tyres, ODE contacts) act on the
+  // whole car, chassis and shell: the car's acceleration is gravity plus M_c / M of the rest, and its
+  // angular acceleration (I_c + I_s)^-1 I_c of ODE's. The shell held against that hands the chassis its
+  // inertia in this step, so the chassis ends with the whole car's motion (the shell's weight included).
+  // Visual: scaled by inertial_scale.
+  if (crush || dc.settings.inertial_scale > 0) {
+    const Eigen::Vector3d gravity = world.settings().gravity_mps2;
+    Eigen::Vector3d acceleration = (car.velocity_mps() - dc.previous_velocity_mps) / dt;
+    Eigen::Vector3d angular_acceleration =
+        to_vehicle * ((car.angularVelocity_rad_s() - dc.previous_omega_radps) / dt);
+    if (crush) {
+      acceleration = gravity + (car.chassisMass_kg() / car.mass_kg()) * (acceleration - gravity);
+      angular_acceleration = dc.chassis_share_of_rotation * angular_acceleration;
+    }
+    inputs.chassis.acceleration_mps2 = to_vehicle * acceleration;
     inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
-    inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
+    inputs.chassis.angular_acceleration_radps2 = angular_acceleration;
+    inputs.chassis.gravity_mps2 = to_vehicle * gravity;
   }
 
   dc.plastic_before_step_J = state.plastic_work_J;
+  dc.contact_loss_before_step_J = dc.contact_loss_J;
+  if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.body->carriedElasticEnergy_J();
   const deform::StepReport report = dc.body->step(inputs, dt);
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
+  dc.contact_loss_J += report.contact_loss_J;
 
   // Reaction, equal and opposite in this step: the momentum the body handed its core goes to the chassis
   // (and the core's travel within the step to its position); the momentum the obstacles gave the points
@@ -122,9 +140,13 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   dc.step_crush_work_J = 0;
   if (crush) {
     const double kinetic_before_J = kineticEnergy(car);
+    // The moment turns chassis and shell together: the points live in the chassis's frame, so the shell
+    // turns with it rigidly and takes its share, I_s I^-1, of the angular momentum.
+    const Eigen::Vector3d lever = dc.body_settings->core_m - car.centreOfMass_m();
+    const Eigen::Vector3d moment = dc.chassis_share_of_rotation.transpose() *
+                                   (lever.cross(report.core_impulse_Ns) + report.core_angular_impulse_Nms);
     world.applyImpulse({EntityRef::Kind::Car, dc.id}, frame.orientation * report.core_impulse_Ns,
-                       frame.toWorld(dc.body_settings->core_m),
-                       frame.orientation * report.core_angular_impulse_Nms);
+                       car.bodyPose().position_m, frame.orientation * moment);
     world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
     dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
     for (std::size_t k = 0; k < dc.touching.size(); ++k) {  // one contact shape per touched entity
@@ -137,6 +159,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     }
   }
   dc.previous_velocity_mps = car.velocity_mps();
+  dc.previous_omega_radps = car.angularVelocity_rad_s();
 
   // The collision hull follows the dent once the contact is over (never during it, DESIGN.md sec. 5): no
   // point has touched anything for 0.1 s, the body is at rest, and the old hull touches nothing it could

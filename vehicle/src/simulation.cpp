@@ -33,7 +33,21 @@ void require(bool ok, const char* member, const std::string& rule, double value)
 double kineticEnergy(const Car& car) {
   const Eigen::Vector3d v = car.velocity_mps();
   const Eigen::Vector3d w = car.bodyPose().orientation.conjugate() * car.angularVelocity_rad_s();
-  return 0.5 * car.mass_kg() * v.squaredNorm() + 0.5 * w.dot(car.inertia_kg_m2() * w);
+  return 0.5 * car.chassisMass_kg() * v.squaredNorm() + 0.5 * w.dot(car.chassisInertia_kg_m2() * w);
+}
+
+double Simulation::Impl::carKineticEnergy(const DeformableCar& dc) const {
+  const Car& car = world.car(dc.id);
+  double kinetic_J = kineticEnergy(car);
+  if (dc.settings.coupling != Coupling::Crush) return kinetic_J;
+  const Eigen::Quaterniond to_vehicle = car.vehiclePose().orientation.conjugate();
+  const Eigen::Vector3d v = to_vehicle * car.velocity_mps(), w = to_vehicle * car.angularVelocity_rad_s();
+  const deform::BodyState& s = dc.body->state();
+  const std::vector<double>& m = dc.body_settings->mass_kg;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    kinetic_J += 0.5 * m[i] *
+                 (v + w.cross(s.positions_m[i] - car.centreOfMass_m()) + s.velocities_mps[i]).squaredNorm();
+  return kinetic_J;
 }
 
 bool crushable(const World& world, EntityRef e) {
@@ -105,8 +119,14 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
   const std::string source = model.source.empty() ? "vehicle model" : model.source;
   dc->mesh = deform::buildControlMesh(points, deformation.control_points, source.c_str());
-  const deform::MassSplit masses =
-      deform::distributeMass(dc->mesh, car.mass_kg * deformation.shell_mass_fraction);
+  // The shell's share of the car's mass, spread over the points by the tetrahedral fan (its shape only:
+  // the points hold shell_mass_fraction of the car); the chassis keeps the rest.
+  deform::MassSplit masses = deform::distributeMass(dc->mesh, car.mass_kg);
+  double points_kg = 0;
+  for (double m : masses.point_mass_kg) points_kg += m;
+  const double shell_kg = car.mass_kg * deformation.shell_mass_fraction;
+  for (double& m : masses.point_mass_kg) m *= shell_kg / points_kg;
+  masses.core_mass_kg = car.mass_kg - shell_kg;
   deform::BodyDescription description;
   description.material = deformation.material;
   description.max_deviation_m = deformation.max_deviation_m;
@@ -116,15 +136,29 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   params.substeps = static_cast<uint32_t>(deformation.substeps);
   params.iterations = static_cast<uint32_t>(deformation.iterations);
   params.damping_per_s = deformation.damping;
-  params.inertial_scale = deformation.inertial_scale;
+  params.yield_limited = deformation.yield_limited;
+  // Crush: the shell's inertia is real, at full scale; Visual: the paper's scaled fictitious forces.
+  params.inertial_scale = deformation.coupling == Coupling::Crush ? 1.0 : deformation.inertial_scale;
   dc->body = std::make_unique<deform::DeformableBody>(dc->body_settings, params);
 
   const CarId id = impl_->world.addCar(model, car, start);
   dc->id = id;
-  if (deformation.coupling == Coupling::Crush)
+  Car& c = impl_->world.car(id);
+  if (deformation.coupling == Coupling::Crush) {
     impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
-  const Car& c = impl_->world.car(id);
+    // Crush: the shell's points are real mass, moving on their own and pulling on the chassis through
+    // the spokes (its weight and inertia included), so the ODE chassis carries the rest of the car.
+    Eigen::Matrix3d shell_inertia = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < masses.point_mass_kg.size(); ++i) {
+      const Eigen::Vector3d r = dc->mesh.points_m[i] - c.centreOfMass_m();
+      shell_inertia +=
+          masses.point_mass_kg[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    c.carryShell(shell_kg, shell_inertia);
+    dc->chassis_share_of_rotation = c.inertia_kg_m2().inverse() * c.chassisInertia_kg_m2();
+  }
   dc->previous_velocity_mps = c.velocity_mps();
+  dc->previous_omega_radps = c.angularVelocity_rad_s();
   if (impl_->index_of.size() <= id) impl_->index_of.resize(id + 1, -1);
   impl_->index_of[id] = static_cast<int>(impl_->cars.size());
   impl_->cars.push_back(std::move(dc));
@@ -144,7 +178,7 @@ void Simulation::step() {
     const Car& car = m.world.car(dc->id);
     velocity_before.push_back(car.velocity_mps());
     omega_before.push_back(car.angularVelocity_rad_s());
-    kinetic_before.push_back(kineticEnergy(car));
+    kinetic_before.push_back(m.carKineticEnergy(*dc));
   }
   m.world.step();
   const auto t1 = Clock::now();
@@ -174,7 +208,8 @@ void Simulation::step() {
     const VehicleSettings& vs = car.settings();
     const Eigen::Vector3d drag =
         -0.5 * vs.air_density_kg_m3 * vs.drag_area_m2 * velocity_before[i].norm() * velocity_before[i];
-    taken_J -= (drag + car.mass_kg() * m.world.settings().gravity_mps2).dot(v_mid) * dt;
+    taken_J -=
+        (drag + car.mass_kg() * m.world.settings().gravity_mps2).dot(v_mid) * dt;  // whole car's weight
     dc.step_other_work_J = taken_J;
     m.stepCar(dc);
     m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);

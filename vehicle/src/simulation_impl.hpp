@@ -16,7 +16,7 @@
 namespace vehicle {
 
 /// Kinetic energy of a rigid body: translation plus rotation (I in the body axes) [J].
-double kineticEnergy(const Car& car);
+double kineticEnergy(const Car& car);  ///< of the ODE chassis [J]
 /// The one definition of what crushes the body: anything but the ground, ramps and vegetation.
 bool crushable(const World& world, EntityRef e);
 /// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
@@ -40,9 +40,13 @@ struct DeformableCar {
   ObstacleShape world_shape;
 
   // Coupling.
-  bool hull_dirty = false;  ///< dented since the collision hull was last rebuilt
-  int quiet_steps = 0;      ///< steps without a control point in contact
-  Eigen::Vector3d previous_velocity_mps{0, 0, 0};
+  bool hull_dirty = false;                         ///< dented since the collision hull was last rebuilt
+  int quiet_steps = 0;                             ///< steps without a control point in contact
+  Eigen::Vector3d previous_velocity_mps{0, 0, 0};  ///< chassis, after the body's reaction last step (world)
+  Eigen::Vector3d previous_omega_radps{0, 0, 0};   ///< the same, angular (world)
+  /// Crush: (I_chassis + I_shell)^-1 I_chassis, the whole car's angular acceleration per ODE's (chassis
+  /// axes) [-].
+  Eigen::Matrix3d chassis_share_of_rotation = Eigen::Matrix3d::Identity();
 
   // Metrics.
   CrashMetrics metrics;
@@ -62,6 +66,9 @@ struct DeformableCar {
   double damping_at_impact_J = 0;
   double contact_work_J = 0;  ///< deform's, since the start [J]
   double contact_work_at_impact_J = 0;
+  double contact_loss_J = 0;  ///< deform's, since the start [J]
+  double contact_loss_at_impact_J = 0, contact_loss_before_step_J = 0;
+  double elastic_at_impact_J = 0, elastic_before_step_J = 0;  ///< the body's elastic energy [J]
   double step_crush_work_J = 0;  ///< kinetic energy the body's reaction took from the chassis this step [J]
   double step_other_work_J = 0;  ///< work every other force took from it this step [J]
 };
@@ -115,6 +122,10 @@ struct Simulation::Impl {
     s.centre_m /= static_cast<double>(s.vertices_m.size());
     return s;
   }
+
+  /// The whole car's kinetic energy in the world [J]: the ODE chassis, and in Crush the shell's points
+  /// (the chassis's motion at each point plus the point's own relative velocity).
+  double carKineticEnergy(const DeformableCar& dc) const;
 
   void stepCar(DeformableCar& dc);
   void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before, double kinetic_before);

@@ -45,15 +45,21 @@ inline constexpr double kMinConstraintLength_m = 1e-12;
 /// XPBD distance constraint C = |x_a - x_b| - rest (eq. 17, 18), Gauss-Seidel: moves `xa` and `xb`
 /// by their inverse masses [1/kg] and accumulates the multiplier `lambda` [N s^2]. `alpha_tilde` is
 /// compliance / h^2 [1/kg]. Returns the constraint value C before the projection [m].
+/// A yielding constraint carries no more than its yield force: `lambda` stays within [lambda_min,
+/// lambda_max] (tension is negative: -F_stretch h^2 .. F_shorten h^2), and what the clamp leaves of C is
+/// plastic flow for the substep's return map (a force-limited constraint, like a motor's maximum impulse).
 inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa, double wb, double rest_m,
-                              double alpha_tilde, double& lambda) {
+                              double alpha_tilde, double& lambda, double lambda_min = -HUGE_VAL,
+                              double lambda_max = HUGE_VAL) {
   const Eigen::Vector3d d = xa - xb;
   const double length = d.norm();
   const double w = wa + wb;
   if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
   const double c = length - rest_m;
-  const double d_lambda = (-c - alpha_tilde * lambda) / (w + alpha_tilde);
-  lambda += d_lambda;
+  const double next =
+      std::clamp(lambda + (-c - alpha_tilde * lambda) / (w + alpha_tilde), lambda_min, lambda_max);
+  const double d_lambda = next - lambda;
+  lambda = next;
   const Eigen::Vector3d n = d * (d_lambda / length);  // grad_xa C * d_lambda
   xa += wa * n;
   xb -= wb * n;
@@ -63,14 +69,17 @@ inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double w
 /// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the core at `core_m` (inverse
 /// mass `w_core` [1/kg]; 0 = kinematic): the spoke (eq. 17, 18). Returns C before the projection [m].
 inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w, double w_core,
-                           double rest_m, double alpha_tilde, double& lambda) {
+                           double rest_m, double alpha_tilde, double& lambda, double lambda_min = -HUGE_VAL,
+                           double lambda_max = HUGE_VAL) {
   const Eigen::Vector3d d = x - core_m;
   const double length = d.norm();
   const double sum = w + w_core;
   if (length < kMinConstraintLength_m || sum + alpha_tilde <= 0) return 0;
   const double c = length - rest_m;
-  const double d_lambda = (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
-  lambda += d_lambda;
+  const double next =
+      std::clamp(lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde), lambda_min, lambda_max);
+  const double d_lambda = next - lambda;
+  lambda = next;
   const Eigen::Vector3d n = d * (d_lambda / length);
   x += w * n;
   core_m -= w_core * n;
@@ -166,6 +175,24 @@ struct PlasticLaw {
   double min_rest_fraction = 0;  ///< lower clamp of L / L0 [1]
   double max_rest_fraction = 0;  ///< upper clamp of L / L0 [1]
 };
+
+/// The force a constraint carries at yield now [N]: its yield elongation (raised by hardening as it has
+/// flowed) over its compliance; infinite for a rigid one (alpha = 0), which has no yield force.
+struct YieldForce {
+  float stretch_N = HUGE_VALF, shorten_N = HUGE_VALF;
+};
+inline YieldForce yieldForce(double compliance_m_per_N, double rest_m, double original_rest_m,
+                             const YieldLimits& yield, const PlasticLaw& law) {
+  YieldForce out;
+  if (!(compliance_m_per_N > 0)) return out;
+  const double taken = law.hardening * std::abs(rest_m - original_rest_m);
+  // At its rest-length clamp a constraint can flow no further that way: it bottoms out, rigidly elastic.
+  if (rest_m < law.max_rest_fraction * original_rest_m)
+    out.stretch_N = static_cast<float>((yield.stretch_m + taken) / compliance_m_per_N);
+  if (rest_m > law.min_rest_fraction * original_rest_m)
+    out.shorten_N = static_cast<float>((yield.shorten_m + taken) / compliance_m_per_N);
+  return out;
+}
 
 /// Return map of the rest length (1D elastoplasticity with linear hardening, Simo and Hughes 1998,
 /// Box 1.1, in elongations): with the elastic elongation e = l - L and the yield elongation grown by

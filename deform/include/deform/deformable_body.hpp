@@ -18,7 +18,10 @@ namespace deform {
 
 /// What one step did.
 struct StepReport {
-  bool asleep = false;          ///< the step did no work
+  /// The step did no work: the shell moved with its core as one rigid body, and core_impulse_Ns and
+  /// core_angular_impulse_Nms are what holding it against its inertial load (gravity, the chassis's
+  /// acceleration and rotation) hands the core.
+  bool asleep = false;
   uint32_t contact_points = 0;  ///< control points found inside an obstacle (summed over substeps)
   double plastic_work_J = 0;    ///< plastic work done during the step [J]
   double max_speed_mps = 0;     ///< fastest control point at the end, relative to the chassis [m/s]
@@ -41,6 +44,9 @@ struct StepReport {
   /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the
   /// obstacle's velocity V relative to the chassis) [J]: what the obstacles put into the body.
   double contact_work_J = 0;
+  /// Kinetic energy the contact corrections took from the points in each obstacle's frame [J]: the
+  /// inelastic stop of the motion into it, and friction.
+  double contact_loss_J = 0;
 };
 
 /// Energy of the body relative to the chassis (the core is kinematic).
@@ -75,6 +81,11 @@ class DeformableBody {
   /// Replaces the state (a restored snapshot or a decoded damage record); sizes must match.
   void setState(BodyState state);
   const SolverParams& params() const { return params_; }
+  /// Elastic energy at the forces the last substep's solve carried, sum 1/2 alpha F^2 with F = |lambda| /
+  /// h^2 (XPBD eq. 18) [J]. Equal to 1/2 C^2 / alpha (bodyEnergy) where the solve converged; where it did
+  /// not (a stiff constraint on light points), C is mostly error the solve has not yet corrected, not
+  /// stored energy, and this is what the body holds. 0 before the first step.
+  double carriedElasticEnergy_J() const;
   /// Throws InputError for bad parameters.
   void setParams(const SolverParams& params);
 
@@ -82,11 +93,33 @@ class DeformableBody {
   void substep(double h, const std::vector<ContactShape>& shapes, const StepInputs& inputs,
                StepReport& report);
   /// Fills contacts_; returns how many points are inside an obstacle.
-  uint32_t findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs);
+  uint32_t findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs, double h);
+  /// For a point inside `shape` at `end_m` that was outside at `start_m` (relative to the obstacle):
+  /// `p` becomes the contact at the face it came in through.
+  static void enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m,
+                        const Eigen::Vector3d& end_m, Penetration& p);
   /// `shapes` moved back along their velocities to where they are `behind_s` before the step's end.
   void placeObstacles(const StepInputs& inputs, double behind_s);
   void plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h);
   bool loadChanged() const;
+  /// Every constraint's yield force from the state's rest lengths (after construction and setState).
+  void refreshYieldForces();
+  /// The visual constraint (the deviation cap) after the solve; a held point at its cap stops the core.
+  void capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
+                    const Eigen::Vector3d& core_start, Eigen::Vector3d& tie_push, StepReport& report);
+  /// Asleep: the core's impulse and moment from holding the rigid shell against its inertial load.
+  /// O(1) per step: the shell's mass moments are taken once when it falls asleep (positions are frozen).
+  void rigidShellLoad(double dt_s, StepReport& report);
+
+  /// Mass moments of the frozen shell about the core: mass, first moment and inertia tensor.
+  struct RigidMoments {
+    bool valid = false;
+    double mass_kg = 0;
+    Eigen::Vector3d first_moment_kgm{0, 0, 0};
+    Eigen::Matrix3d inertia_kgm2 = Eigen::Matrix3d::Zero();
+  };
+  RigidMoments rigid_moments_;
+  double last_substep_s_ = 0;  ///< h of the last substep (carriedElasticEnergy_J)
 
   /// A support shape moved by `offset_m` (an obstacle part way along its path through the step).
   struct ShiftedSupport {
@@ -102,6 +135,7 @@ class DeformableBody {
     uint32_t point;
     Eigen::Vector3d normal;
     Eigen::Vector3d surface_m;
+    Eigen::Vector3d moved_m{0, 0, 0};  ///< the correction's displacement of the point this substep
   };
 
   /// A point of the control surface between `corners` (at barycentric `bary`) inside an obstacle: it
@@ -112,7 +146,13 @@ class DeformableBody {
     Eigen::Vector3d bary;
     Eigen::Vector3d normal;
     Eigen::Vector3d surface_m;
+    std::array<Eigen::Vector3d, 3> moved_m{
+        Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+        Eigen::Vector3d::Zero()};  ///< the correction's displacement of each corner this substep
   };
+  /// Kinetic energy the contact corrections took from the points this substep, in each obstacle's frame
+  /// (call before the velocities are updated) [J].
+  double contactLoss(const StepInputs& inputs, double h) const;
   /// Appends the face contacts of one obstacle; returns how many.
   uint32_t findFaceContacts(const ContactShape& shape, uint32_t shape_index);
 
@@ -122,11 +162,14 @@ class DeformableBody {
   // Scratch, not state: reset every substep.
   std::vector<Eigen::Vector3d> previous_m_;
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
+  std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
-  std::vector<uint8_t> touched_;         ///< per point: in contact with the obstacle being searched
-  std::vector<ContactShape> placed_;     ///< the obstacles where they are in the current substep
-  std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
+  std::vector<Eigen::Vector3d> held_normal_;  ///< per held point: the obstacle's normal (out of it)
+  std::vector<uint32_t> held_by_;             ///< per point: 1 + the obstacle that held it this substep, or 0
+  std::vector<uint8_t> touched_;              ///< per point: in contact with the obstacle being searched
+  std::vector<ContactShape> placed_;          ///< the obstacles where they are in the current substep
+  std::vector<ShiftedSupport> shifted_;       ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
   Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
   double core_inverse_mass_per_kg_ = 0;

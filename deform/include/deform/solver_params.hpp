@@ -21,6 +21,12 @@ struct SolverParams {
   /// Points closer than this to an obstacle [m] get a contact constraint for the substep (inactive until
   /// violated), so a point resting on a surface stays there instead of jittering in and out. >= 0.
   double contact_margin_m = 0.01;
+  /// Force-limited constraints: no constraint carries more than its yield force (the multiplier is
+  /// clamped, as a motor's maximum impulse), so what the solve cannot hold flows plastically at the yield
+  /// force and the plastic work is the energy the body took; a held point at its deviation cap then stops
+  /// the core rigidly (the obstacle has reached the car's rigid part). Off: the solve carries whatever
+  /// force the iterations reach and plasticity follows after the solve (docs/CRASH_CALIBRATION.md).
+  bool yield_limited = false;
   /// Sleep: when no contact acts and every control point is slower than this [m/s] ...
   double sleep_speed_mps = 0.005;
   /// ... for this long [s], steps do no work until a contact, an impulse or a change of the inertial load

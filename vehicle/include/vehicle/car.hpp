@@ -52,9 +52,18 @@ class Car {
   void setInput(const DriverInput& input);
   const DriverInput& input() const { return input_; }
 
-  double mass_kg() const { return settings_.mass_kg; }
-  /// Inertia about the centre of mass in the chassis axes [kg m^2].
+  double mass_kg() const { return settings_.mass_kg; }  ///< the whole car [kg]
+  /// Inertia of the whole car about the centre of mass in the chassis axes [kg m^2].
   const Eigen::Matrix3d& inertia_kg_m2() const { return inertia_kg_m2_; }
+  /// The ODE chassis body's mass and inertia: the whole car's less what a deformable shell carries on its
+  /// own point masses (carryShell) [kg], [kg m^2].
+  double chassisMass_kg() const { return chassis_mass_kg_; }
+  const Eigen::Matrix3d& chassisInertia_kg_m2() const { return chassis_inertia_kg_m2_; }
+  /// Hands `shell_mass_kg` with inertia `shell_inertia_kg_m2` (about the centre of mass, chassis axes) to
+  /// a deformable shell whose points move on their own and pull on the chassis through their constraints:
+  /// the ODE body keeps the rest, so the car's total mass is counted once. Throws deform::InputError if
+  /// the rest is not a positive mass with a positive-definite inertia.
+  void carryShell(double shell_mass_kg, const Eigen::Matrix3d& shell_inertia_kg_m2);
   /// Centre of mass in the vehicle (mesh) frame [m]: the chassis body's origin.
   const Eigen::Vector3d& centreOfMass_m() const { return centre_of_mass_m_; }
 
@@ -92,6 +101,8 @@ class Car {
       const Eigen::Vector3d& velocity_mps);
   /// Steering, engine, wheels (ray, suspension, tyre) and drag forces for a step of dt_s.
   void applyForces(double dt_s);
+  /// The ODE body's mass and inertia (about its origin, the centre of mass).
+  void setChassisMass(double mass_kg, const Eigen::Matrix3d& inertia_kg_m2);
   void appendState(std::vector<double>& out) const;
   /// The crush backstop (World::setCrushAllowance): a second convex geom on the chassis, the collision
   /// hull with every point moved `allowance_m` towards the centre of mass (then re-hulled), tagged with
@@ -104,6 +115,8 @@ class Car {
   deform::ControlMesh hull_;
   Eigen::Vector3d centre_of_mass_m_{0, 0, 0};
   Eigen::Matrix3d inertia_kg_m2_ = Eigen::Matrix3d::Identity();
+  double chassis_mass_kg_ = 0;
+  Eigen::Matrix3d chassis_inertia_kg_m2_ = Eigen::Matrix3d::Identity();
   double wheelbase_m_ = 0, track_m_ = 0;
 
   DriverInput input_;

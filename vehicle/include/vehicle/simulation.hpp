@@ -68,6 +68,10 @@ struct DeformationSettings {
   /// paper's coupling; not yet given a physical meaning, see docs/CRASH_CALIBRATION.md).
   double visual_impulse_scale = 0.05;
   Coupling coupling = Coupling::Crush;
+  /// Force-limited constraints (deform::SolverParams::yield_limited): no constraint carries more than its
+  /// yield force, and a held point at its cap stops the chassis rigidly. Off by default until the cases
+  /// docs/CRASH_CALIBRATION.md lists are re-calibrated.
+  bool yield_limited = false;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
@@ -76,29 +80,34 @@ struct DeformationSettings {
 /// Throws deform::InputError naming the member ("vehicle.deformation.<member>") for a value out of range.
 void checkDeformationSettings(const DeformationSettings& settings);
 
-/// Energy of a run since the car's first impact [J]. Every term is measured on its own: the chassis's
-/// kinetic energy, the kinetic energy the body's reaction took from it (crush_work_J), the work of every
-/// other force on it, and in the body its plastic work (force x plastic flow), its viscous loss and the
-/// elastic and kinetic energy it holds; balance_error_J then checks the body against the chassis.
+/// Energy of a run since the car's first impact [J], in the world frame. Every term is measured on its
+/// own: the whole car's kinetic energy (ODE chassis plus the shell's point masses), the work of every
+/// force ODE applies to the chassis, and in the body its plastic work (force x plastic flow), viscous
+/// loss, contact loss (each contact correction's kinetic energy in the obstacle's frame) and elastic
+/// energy. balance_error_J is what those leave unexplained; none of them is defined as a remainder.
 struct EnergyTerms {
-  double kinetic_initial_J = 0;  ///< the chassis's kinetic energy (translation + rotation) at impact [J]
-  double plastic_work_J = 0;     ///< plastic work done in the body since impact (deform) [J]
-  double damping_loss_J = 0;     ///< the body's viscous loss since impact (deform) [J]
+  /// The whole car's kinetic energy (chassis translation + rotation, and the shell's points) at impact [J].
+  double kinetic_initial_J = 0;
+  double plastic_work_J = 0;  ///< plastic work done in the body since impact (deform) [J]
+  double damping_loss_J = 0;  ///< the body's viscous loss since impact (deform) [J]
+  double contact_loss_J = 0;  ///< kinetic energy the obstacles' contacts took from the points (deform) [J]
+  /// Elastic energy the body holds now less at impact, at the forces its constraints carry (sum 1/2 alpha
+  /// F^2, deform::DeformableBody::carriedElasticEnergy_J) [J].
+  double elastic_energy_J = 0;
   /// Work the obstacles did on the body, in the chassis's frame (StepReport::contact_work_J) [J].
   double contact_work_J = 0;
-  /// damping_loss_J plus other_work_J: what left the car other than as plastic work [J].
+  /// damping_loss_J + contact_loss_J + other_work_J: what left the car other than as plastic work [J].
   double dissipated_J = 0;
-  double kinetic_final_J = 0;  ///< the chassis's kinetic energy now [J]
+  double kinetic_final_J = 0;  ///< the whole car's kinetic energy now [J]
   /// Kinetic energy the body's reaction (the momentum it handed the chassis, step by step) took from the
-  /// chassis [J]. In Crush, what the body can turn into plastic work.
+  /// ODE chassis [J].
   double crush_work_J = 0;
-  /// Work taken from the chassis by every other force: tyres and suspension, ODE's rigid contacts (the
-  /// backstop, the ground), drag, gravity (raising the car) [J].
+  /// Work taken from the car by every force ODE applies: tyres and suspension, ODE's rigid contacts (the
+  /// backstop, the ground), drag, and gravity on the whole car (raising it) [J].
   double other_work_J = 0;
   double body_energy_J = 0;  ///< elastic plus kinetic energy held in the body relative to the chassis now [J]
-  /// crush_work - plastic - damping loss - body energy now [J]: what the body took from the chassis and
-  /// no measured term holds. Not yet measured on its own: the inelastic stopping of the points at the
-  /// obstacle and contact friction (docs/CRASH_CALIBRATION.md gives its size against N).
+  /// kinetic_initial - kinetic_final - plastic - damping - contact loss - elastic - other work [J]: the
+  /// energy no measured term explains (the XPBD solve's own numerical loss, docs/CRASH_CALIBRATION.md).
   double balance_error_J = 0;
 };
 
