@@ -263,7 +263,7 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     if (k < inputs.contact_velocity_mps.size()) obstacle_moved_m = h * inputs.contact_velocity_mps[k];
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
-        if (p.depth_m > 0) enteredAt(shape, previous_m_[i] - obstacle_moved_m, x[i], p);
+        if (p.depth_m > 0) enteredAt(shape, previous_m_[i] + obstacle_moved_m, x[i], p);
         contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
         if (surface && p.depth_m > 0) touched_[i] = 1;
@@ -281,7 +281,16 @@ void DeformableBody::enteredAt(const ContactShape& shape, const Eigen::Vector3d&
   // path relative to the obstacle (start outside, end inside); `p` becomes the contact at that face.
   constexpr int kBisections = 12;  // the entry to 1/4096 of the substep's travel
   Penetration probe;
-  if (penetration(shape, start_m, probe)) return;  // inside already: the nearest face stands
+  if (penetration(shape, start_m, probe) && probe.depth_m > 0) {
+    // Inside already (a correction after the contacts left it a little in): out through the face that
+    // was nearest when the substep began.
+    const double depth_m = probe.normal.dot(start_m + probe.depth_m * probe.normal - end_m);
+    if (depth_m > 0) {
+      p.normal = probe.normal;
+      p.depth_m = depth_m;
+    }
+    return;
+  }
   Eigen::Vector3d outside = start_m, inside = end_m;
   for (int k = 0; k < kBisections; ++k) {
     const Eigen::Vector3d middle = 0.5 * (outside + inside);
@@ -291,7 +300,7 @@ void DeformableBody::enteredAt(const ContactShape& shape, const Eigen::Vector3d&
   // The plane of the entry face, and the end point's depth below it.
   const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;
   const double depth_m = probe.normal.dot(surface_m - end_m);
-  if (depth_m <= p.depth_m) return;  // the nearest face is the entry face
+  if (!(depth_m > 0)) return;
   p.normal = probe.normal;
   p.depth_m = depth_m;
 }
@@ -550,13 +559,15 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     for (std::size_t i = 0; i < n; ++i) {
       if (held_by_[i] == 0) continue;
       // The obstacle pushes only along its normal: the core moves back along it by the least s >= 0 that
-      // brings the point within its cap, |d - s n| <= cap; a tangential excess is the point's own to fix.
+      // brings the point within its cap, |d - s n| <= cap; a point beyond its cap across the normal is the
+      // point's own to fix (its projection below).
       const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
       const double cap = settings.max_deviation_m[i];
       if (d.squaredNorm() <= cap * cap) continue;
       const double along = d.dot(held_normal_[i]);
       const double across2 = d.squaredNorm() - along * along;
-      const double s = along - std::sqrt(std::max(0.0, cap * cap - across2));
+      if (across2 >= cap * cap) continue;  // beyond the cap across the normal: no push along it helps
+      const double s = along - std::sqrt(cap * cap - across2);
       if (!(s > 0)) continue;
       total_m += s;
       lever_sum += s * (settings.rest_positions_m[i] - settings.core_m);
