@@ -450,11 +450,15 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     if (shape < inputs.contact_velocity_mps.size())
       contact_work_x_h += m[i] * dx.dot(inputs.contact_velocity_mps[shape] - core_velocity_mps_);
   };
-  for (uint32_t it = 0; it < params_.iterations; ++it) {
+  // The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
+  // unlimited sweep reads no yield arrays, so it costs what it did before they existed.
+  auto sweepConstraints = [&](auto limited_tag) {
+    constexpr bool kLimited = decltype(limited_tag)::value;
     for (std::size_t k = 0; k < edge_count; ++k) {
       const EdgeConstraint& c = edges[k];
       projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
-                      edge_lambda_[k], -h2 * edge_yield[k].stretch_N, h2 * edge_yield[k].shorten_N);
+                      edge_lambda_[k], kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
+                      kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
     }
     // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
     // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
@@ -465,7 +469,8 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];
       projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
-                   spoke_lambda_[k], -h2 * spoke_yield[k].stretch_N, h2 * spoke_yield[k].shorten_N);
+                   spoke_lambda_[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+                   kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
       const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
       sweep_pull += pull;
       spoke_twist += anchors[k].cross(pull);
@@ -475,9 +480,16 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     for (std::size_t k = 0; k < bend_count; ++k) {
       const BendConstraint& c = bends[k];
       projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k],
-                      c.compliance_m_per_N * inv_h2, bend_lambda_[k], -h2 * bend_yield[k].stretch_N,
-                      h2 * bend_yield[k].shorten_N);
+                      c.compliance_m_per_N * inv_h2, bend_lambda_[k],
+                      kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
+                      kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
     }
+  };
+  for (uint32_t it = 0; it < params_.iterations; ++it) {
+    if (params_.yield_limited)
+      sweepConstraints(std::true_type{});
+    else
+      sweepConstraints(std::false_type{});
     for (ContactPoint& c : contacts_) {
       const Eigen::Vector3d before = x[c.point];
       projectContact(x[c.point], previous_m_[c.point], c.normal, c.surface_m, inputs.contact_friction);
@@ -533,38 +545,34 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
   // A point an obstacle holds cannot give way. At its cap the car's rigid part has reached the obstacle:
   // the core moves to the point instead (a rigid stop of the chassis, whose momentum the obstacle gives),
   // rather than the point being pulled into the obstacle and, through a thin wall, out of its far side.
-  held_by_.assign(n, 0);
-  held_normal_.resize(n);
-  for (const ContactPoint& c : contacts_)
-    if (c.moved_m.squaredNorm() > 0) {
-      held_by_[c.point] = c.shape + 1;
-      held_normal_[c.point] = c.normal;
-    }
-  for (const FaceContact& c : face_contacts_)
-    for (int j = 0; j < 3; ++j)
-      if (c.moved_m[j].squaredNorm() > 0) {
-        held_by_[c.corners[j]] = c.shape + 1;
-        held_normal_[c.corners[j]] = c.normal;
-      }
+  // Only force-limited bodies stop this way (an unlimited solve carries the force the stop would).
+  held_.clear();
+  const bool stops = params_.yield_limited && core_inverse_mass_per_kg_ > 0;
+  if (stops) {
+    for (const ContactPoint& c : contacts_)
+      if (c.moved_m.squaredNorm() > 0) held_.push_back({c.point, c.shape, c.normal});
+    for (const FaceContact& c : face_contacts_)
+      for (int j = 0; j < 3; ++j)
+        if (c.moved_m[j].squaredNorm() > 0) held_.push_back({c.corners[j], c.shape, c.normal});
+  }
   // Jacobi over the held points, so that no point's index order decides where the stop acts: each pass
   // moves the core by the largest step any held point needs, and that impulse acts at the held points'
   // rest places weighted by the step each needed (a wall met squarely stops the car at the middle of its
   // front, not at whichever point comes first).
   constexpr int kMostStopPasses = 4;
-  for (int pass = 0; pass < kMostStopPasses && params_.yield_limited && core_inverse_mass_per_kg_ > 0;
-       ++pass) {
+  for (int pass = 0; pass < kMostStopPasses && !held_.empty(); ++pass) {
     double largest_m = 0, total_m = 0;
-    std::size_t largest_point = 0;
+    const HeldPoint* largest = nullptr;
     Eigen::Vector3d lever_sum{0, 0, 0};
-    for (std::size_t i = 0; i < n; ++i) {
-      if (held_by_[i] == 0) continue;
+    for (const HeldPoint& held : held_) {
+      const uint32_t i = held.point;
       // The obstacle pushes only along its normal: the core moves back along it by the least s >= 0 that
       // brings the point within its cap, |d - s n| <= cap; a point beyond its cap across the normal is the
       // point's own to fix (its projection below).
       const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
       const double cap = settings.max_deviation_m[i];
       if (d.squaredNorm() <= cap * cap) continue;
-      const double along = d.dot(held_normal_[i]);
+      const double along = d.dot(held.normal);
       const double across2 = d.squaredNorm() - along * along;
       if (across2 >= cap * cap) continue;  // beyond the cap across the normal: no push along it helps
       const double s = along - std::sqrt(cap * cap - across2);
@@ -573,12 +581,12 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
       lever_sum += s * (settings.rest_positions_m[i] - settings.core_m);
       if (s > largest_m) {
         largest_m = s;
-        largest_point = i;
+        largest = &held;
       }
     }
-    if (!(largest_m > 0)) break;
-    const Eigen::Vector3d move = largest_m * held_normal_[largest_point];
-    const uint32_t shape = held_by_[largest_point] - 1;
+    if (largest == nullptr) break;
+    const Eigen::Vector3d move = largest_m * largest->normal;
+    const uint32_t shape = largest->shape;
     Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();
     if (shape < inputs.contact_velocity_mps.size()) obstacle = inputs.contact_velocity_mps[shape];
     const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;

@@ -56,8 +56,9 @@ inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double w
   const double w = wa + wb;
   if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
   const double c = length - rest_m;
-  const double next =
-      std::clamp(lambda + (-c - alpha_tilde * lambda) / (w + alpha_tilde), lambda_min, lambda_max);
+  double next = lambda + (-c - alpha_tilde * lambda) / (w + alpha_tilde);
+  // Unbounded (the default) folds away when inlined with constant bounds: the plain XPBD update.
+  if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
   const double d_lambda = next - lambda;
   lambda = next;
   const Eigen::Vector3d n = d * (d_lambda / length);  // grad_xa C * d_lambda
@@ -76,8 +77,8 @@ inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w
   const double sum = w + w_core;
   if (length < kMinConstraintLength_m || sum + alpha_tilde <= 0) return 0;
   const double c = length - rest_m;
-  const double next =
-      std::clamp(lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde), lambda_min, lambda_max);
+  double next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
+  if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
   const double d_lambda = next - lambda;
   lambda = next;
   const Eigen::Vector3d n = d * (d_lambda / length);

@@ -165,11 +165,15 @@ class DeformableBody {
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
-  std::vector<Eigen::Vector3d> held_normal_;  ///< per held point: the obstacle's normal (out of it)
-  std::vector<uint32_t> held_by_;             ///< per point: 1 + the obstacle that held it this substep, or 0
-  std::vector<uint8_t> touched_;              ///< per point: in contact with the obstacle being searched
-  std::vector<ContactShape> placed_;          ///< the obstacles where they are in the current substep
-  std::vector<ShiftedSupport> shifted_;       ///< storage behind placed_'s support shapes (stable addresses)
+  /// A point an obstacle's contact moved this substep (capDeviation): the obstacle and its normal.
+  struct HeldPoint {
+    uint32_t point, shape;
+    Eigen::Vector3d normal;
+  };
+  std::vector<HeldPoint> held_;
+  std::vector<uint8_t> touched_;         ///< per point: in contact with the obstacle being searched
+  std::vector<ContactShape> placed_;     ///< the obstacles where they are in the current substep
+  std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
   Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
   double core_inverse_mass_per_kg_ = 0;
