@@ -263,7 +263,11 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     if (k < inputs.contact_velocity_mps.size()) obstacle_moved_m = h * inputs.contact_velocity_mps[k];
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
-        if (p.depth_m > 0) enteredAt(shape, previous_m_[i] + obstacle_moved_m, x[i], p);
+        // Only a point that moved further than its depth relative to the obstacle this substep can have
+        // come in by another face than the nearest (the entry face is at most that travel away).
+        const Eigen::Vector3d start_m = previous_m_[i] + obstacle_moved_m;
+        if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
+          enteredAt(shape, start_m, x[i], p);
         contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
         inside += p.depth_m > 0;
         if (surface && p.depth_m > 0) touched_[i] = 1;
