@@ -1,0 +1,198 @@
+// DeformableBody's contacts: the obstacles placed along their path through the step, the points and
+// faces inside them, and the kinetic energy the corrections took.
+#include <deform/contact_shapes.hpp>
+#include <deform/deformable_body.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
+namespace deform {
+
+Eigen::Vector3d DeformableBody::ShiftedSupport::support(const void* user, const Eigen::Vector3d& direction) {
+  const auto& self = *static_cast<const ShiftedSupport*>(user);
+  return self.shape.support(self.shape.user, direction) + self.offset_m;
+}
+
+void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
+  const std::size_t count = inputs.contacts.size();
+  placed_.assign(inputs.contacts.begin(), inputs.contacts.end());
+  shifted_.resize(count);  // never reallocated while placed_ points into it: sized before use
+  for (std::size_t k = 0; k < count && k < inputs.contact_velocity_mps.size(); ++k) {
+    const Eigen::Vector3d offset = -behind_s * inputs.contact_velocity_mps[k];
+    if (offset.squaredNorm() == 0) continue;
+    std::visit(
+        [&](auto& shape) {
+          using T = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<T, HalfSpaceShape>) {
+            shape.offset_m += shape.normal.dot(offset);
+          } else if constexpr (std::is_same_v<T, CapsuleShape>) {
+            shape.a_m += offset;
+            shape.b_m += offset;
+          } else if constexpr (std::is_same_v<T, ConvexSupportShape>) {
+            shifted_[k] = {shape, offset};
+            shape.support = &ShiftedSupport::support;
+            shape.user = &shifted_[k];
+            shape.centre_m += offset;
+          } else {
+            shape.centre_m += offset;
+          }
+        },
+        placed_[k]);
+  }
+}
+
+uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs,
+                                      double h) {
+  // Points inside an obstacle or within the margin of it: a point resting on a surface at the start of
+  // the substep stays held by its (inactive until violated) contact instead of sinking in for a substep
+  // and being thrown out the next, a jitter.
+  contacts_.clear();
+  face_contacts_.clear();
+  const auto& x = state_.positions_m;
+  Penetration p;
+  uint32_t inside = 0;
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    const ContactShape& shape = shapes[k];
+    const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
+    if (surface) touched_.assign(x.size(), 0);
+    Eigen::Vector3d obstacle_moved_m = Eigen::Vector3d::Zero();
+    if (k < inputs.contact_velocity_mps.size()) obstacle_moved_m = h * inputs.contact_velocity_mps[k];
+    for (uint32_t i = 0; i < x.size(); ++i)
+      if (penetration(shape, x[i], p, params_.contact_margin_m)) {
+        // Only a point that moved further than its depth relative to the obstacle this substep can have
+        // come in by another face than the nearest (the entry face is at most that travel away).
+        const Eigen::Vector3d start_m = previous_m_[i] + obstacle_moved_m;
+        if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
+          enteredAt(shape, start_m, x[i], p);
+        contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
+        inside += p.depth_m > 0;
+        if (surface && p.depth_m > 0) touched_[i] = 1;
+      }
+    if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k));
+  }
+  return inside;
+}
+
+void DeformableBody::enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m,
+                               const Eigen::Vector3d& end_m, Penetration& p) {
+  // A point that came in through a face this substep goes back out through it, not through whichever
+  // face is nearest now: in a thin wall met faster than half its thickness per substep the nearest face
+  // is the far one, and the point would pass through. The entry is found by bisection of the point's
+  // path relative to the obstacle (start outside, end inside); `p` becomes the contact at that face.
+  constexpr int kBisections = 12;  // the entry to 1/4096 of the substep's travel
+  Penetration probe;
+  if (penetration(shape, start_m, probe) && probe.depth_m > 0) {
+    // Inside already (a correction after the contacts left it a little in): out through the face that
+    // was nearest when the substep began.
+    const double depth_m = probe.normal.dot(start_m + probe.depth_m * probe.normal - end_m);
+    if (depth_m > 0) {
+      p.normal = probe.normal;
+      p.depth_m = depth_m;
+    }
+    return;
+  }
+  Eigen::Vector3d outside = start_m, inside = end_m;
+  for (int k = 0; k < kBisections; ++k) {
+    const Eigen::Vector3d middle = 0.5 * (outside + inside);
+    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside : outside) = middle;
+  }
+  if (!penetration(shape, inside, probe) || !(probe.depth_m > 0)) return;
+  // The plane of the entry face, and the end point's depth below it.
+  const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;
+  const double depth_m = probe.normal.dot(surface_m - end_m);
+  if (!(depth_m > 0)) return;
+  p.normal = probe.normal;
+  p.depth_m = depth_m;
+}
+
+uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {
+  // A thin obstacle (a bollard, another car's corner) can come through the control surface between its
+  // points, where no point is inside it. Points on each triangle, a grid at most kFaceSampleSpacing_m
+  // apart, are queried like the control points; one found inside pushes the triangle's corners out along
+  // the obstacle's normal, weighted by its barycentric coordinates. Not next to a control point the
+  // obstacle already holds: that point makes the dent (a pole's narrow notch).
+  constexpr double kFaceSampleSpacing_m = 0.1;
+  constexpr int kMostSamplesPerEdge = 8;
+  Eigen::Vector3d centre;
+  double radius = 0;
+  if (!boundingSphere(shape, centre, radius)) return 0;  // a half-space meets the points first
+  const BodySettings& settings = *settings_;
+  const auto& x = state_.positions_m;
+  uint32_t found = 0;
+  Penetration p;
+  for (const auto& t : settings.triangles) {
+    if (touched_[t[0]] || touched_[t[1]] || touched_[t[2]]) continue;
+    const Eigen::Vector3d& a = x[t[0]];
+    const Eigen::Vector3d& b = x[t[1]];
+    const Eigen::Vector3d& c = x[t[2]];
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    const double reach =
+        std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
+    if ((g - centre).norm() > radius + reach) continue;  // broad phase: the spheres do not meet
+    // The obstacle's point deepest into the body across this face (its support point along the inward
+    // normal): when it lies behind the face and over it, the obstacle has poked through between the
+    // corners, however thin it is (a post narrower than the sample spacing is still met). The samples
+    // below still run: for a broad obstacle the support point is a corner, at the edge of its push.
+    const Eigen::Vector3d outward = (b - a).cross(c - a);
+    const double twice_area = outward.norm();
+    if (twice_area > 0) {
+      const Eigen::Vector3d normal = outward / twice_area;
+      Eigen::Vector3d deepest;
+      if (supportPoint(shape, -normal, deepest) && normal.dot(deepest - a) < 0) {
+        const Eigen::Vector3d q = deepest - normal.dot(deepest - a) * normal;  // over it, on the face
+        const double wa = (b - q).cross(c - q).dot(normal) / twice_area;
+        const double wb = (c - q).cross(a - q).dot(normal) / twice_area;
+        const double wc = 1.0 - wa - wb;
+        if (wa >= 0 && wb >= 0 && wc >= 0 && penetration(shape, q, p, 0.0) && p.depth_m > 0) {
+          // The face goes in by the intrusion, but never further than the obstacle's own push-out from
+          // that spot: a broad obstacle (another car) has its support point far behind the face.
+          const double intrusion_m = std::min(-normal.dot(deepest - a), p.depth_m);
+          face_contacts_.push_back(
+              {shape_index, t, Eigen::Vector3d(wa, wb, wc), -normal, q - intrusion_m * normal});
+          ++found;
+        }
+      }
+    }
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int k =
+        std::clamp(static_cast<int>(std::ceil(longest / kFaceSampleSpacing_m)), 2, kMostSamplesPerEdge);
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; i + j <= k; ++j) {
+        if (i == k || j == k || i + j == 0) continue;  // the corners are control points themselves
+        const Eigen::Vector3d bary(static_cast<double>(i) / k, static_cast<double>(j) / k,
+                                   static_cast<double>(k - i - j) / k);
+        const Eigen::Vector3d q = bary[0] * a + bary[1] * b + bary[2] * c;
+        if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) continue;
+        face_contacts_.push_back({shape_index, t, bary, p.normal, q + p.depth_m * p.normal});
+        ++found;
+      }
+    }
+  }
+  return found;
+}
+
+double DeformableBody::contactLoss(const StepInputs& inputs, double h) const {
+  // Each correction's impulse J = m dx / h against the point's mean velocity over the substep relative
+  // to the obstacle, (v0 + v1) / 2 - V: its work, exactly its share of the change of 1/2 m |v - V|^2.
+  // A point stopped at a wall loses 1/2 m u^2; a point held still against it loses nothing.
+  const auto& m = settings_->mass_kg;
+  const auto& x = state_.positions_m;
+  const auto& v = state_.velocities_mps;  // still v0, the substep's start
+  auto work = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& moved) {
+    const Eigen::Vector3d obstacle = shape < inputs.contact_velocity_mps.size()
+                                         ? inputs.contact_velocity_mps[shape]
+                                         : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d mean = 0.5 * (v[i] + (x[i] - previous_m_[i]) / h) - obstacle;
+    return (m[i] / h) * moved.dot(mean);
+  };
+  double loss_J = 0;
+  for (const ContactPoint& c : contacts_) loss_J -= work(c.shape, c.point, c.moved_m);
+  for (const FaceContact& c : face_contacts_)
+    for (int j = 0; j < (c.corners[2] == c.corners[0] ? 2 : 3); ++j)
+      loss_J -= work(c.shape, c.corners[j], c.moved_m[j]);
+  return loss_J;
+}
+
+}  // namespace deform

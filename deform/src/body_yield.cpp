@@ -1,0 +1,161 @@
+// DeformableBody's end of a substep: the visual constraint with the rigid stop at the cap, and the
+// plastic flow of every constraint with the work it did.
+#include <deform/constraints.hpp>
+#include <deform/deformable_body.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace deform {
+
+void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
+                                  const Eigen::Vector3d& core_start, Eigen::Vector3d& tie_push,
+                                  StepReport& report) {
+  const BodySettings& settings = *settings_;
+  auto& x = state_.positions_m;
+  const auto& m = settings.mass_kg;
+  const std::size_t n = settings.pointCount();
+  // A point an obstacle holds cannot give way. At its cap the car's rigid part has reached the obstacle:
+  // the core moves to the point instead (a rigid stop of the chassis, whose momentum the obstacle gives),
+  // rather than the point being pulled into the obstacle and, through a thin wall, out of its far side.
+  // Only force-limited bodies stop this way (an unlimited solve carries the force the stop would).
+  held_.clear();
+  const bool stops = params_.yield_limited && core_inverse_mass_per_kg_ > 0;
+  if (stops) {
+    for (const ContactPoint& c : contacts_)
+      if (c.moved_m.squaredNorm() > 0) held_.push_back({c.point, c.shape, c.normal});
+    for (const FaceContact& c : face_contacts_)
+      for (int j = 0; j < 3; ++j)
+        if (c.moved_m[j].squaredNorm() > 0) held_.push_back({c.corners[j], c.shape, c.normal});
+  }
+  // Jacobi over the held points, so that no point's index order decides where the stop acts: each pass
+  // moves the core by the largest step any held point needs, and that impulse acts at the held points'
+  // rest places weighted by the step each needed (a wall met squarely stops the car at the middle of its
+  // front, not at whichever point comes first).
+  constexpr int kMostStopPasses = 4;
+  for (int pass = 0; pass < kMostStopPasses && !held_.empty(); ++pass) {
+    double largest_m = 0, total_m = 0;
+    const HeldPoint* largest = nullptr;
+    Eigen::Vector3d lever_sum{0, 0, 0};
+    for (const HeldPoint& held : held_) {
+      const uint32_t i = held.point;
+      // The obstacle pushes only along its normal: the core moves back along it by the least s >= 0 that
+      // brings the point within its cap, |d - s n| <= cap; a point beyond its cap across the normal is the
+      // point's own to fix (its projection below).
+      const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
+      const double cap = settings.max_deviation_m[i];
+      if (d.squaredNorm() <= cap * cap) continue;
+      const double along = d.dot(held.normal);
+      const double across2 = d.squaredNorm() - along * along;
+      if (across2 >= cap * cap) continue;  // beyond the cap across the normal: no push along it helps
+      const double s = along - std::sqrt(cap * cap - across2);
+      if (!(s > 0)) continue;
+      total_m += s;
+      lever_sum += s * (settings.rest_positions_m[i] - settings.core_m);
+      if (s > largest_m) {
+        largest_m = s;
+        largest = &held;
+      }
+    }
+    if (largest == nullptr) break;
+    const Eigen::Vector3d move = largest_m * largest->normal;
+    const uint32_t shape = largest->shape;
+    Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();
+    if (shape < inputs.contact_velocity_mps.size()) obstacle = inputs.contact_velocity_mps[shape];
+    const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;
+    const Eigen::Vector3d impulse_Ns = move / (core_inverse_mass_per_kg_ * h);
+    // Its loss: the impulse against the core's mean velocity relative to the obstacle (as contactLoss).
+    report.contact_loss_J -= impulse_Ns.dot(before_mps + 0.5 * move / h);
+    report.contact_impulse_per_obstacle_Ns[shape] += impulse_Ns;
+    report.contact_impulse_Ns += impulse_Ns;
+    report.core_impulse_Ns += impulse_Ns;
+    report.core_angular_impulse_Nms += (lever_sum / total_m).cross(impulse_Ns);
+    core += move;
+  }
+  // The rest are pulled back to the cap; their reactions move the heavy core, which moves every rest
+  // position, so the pass repeats until that is negligible (each pass is smaller by about shell / core
+  // mass). A point held by an obstacle no longer moves the core once it sits at its cap.
+  constexpr int kMostPasses = 8;
+  for (int pass = 0; pass < kMostPasses; ++pass) {
+    Eigen::Vector3d pass_push{0, 0, 0};
+    const Eigen::Vector3d shift = core - settings.core_m;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d before = x[i];
+      if (projectVisual(x[i], settings.rest_positions_m[i] + shift, settings.max_deviation_m[i]))
+        pass_push += m[i] * (x[i] - before);
+    }
+    tie_push += pass_push;
+    const Eigen::Vector3d core_move = -core_inverse_mass_per_kg_ * pass_push;
+    core += core_move;
+    if (core_move.squaredNorm() <= 1e-24) break;  // under 1e-12 m
+  }
+}
+
+void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h) {
+  const BodySettings& settings = *settings_;
+  const auto& x = state_.positions_m;
+  const auto& laws = settings.plastic_laws;
+  double work_J = 0;
+  // One constraint: new rest length by the return map; the plastic work is the force the constraint
+  // carried times the flow |dL| (the 1D sigma_y d eps_p). That force is what the solver applied this
+  // substep, |lambda| / h^2 (XPBD eq. 18: a stiff constraint the iterations did not converge carries less
+  // than its elastic formula says), and never more than the yield force left after the flow,
+  // |l - L'| / alpha.
+  const double inv_h2 = 1.0 / (h * h);
+  auto flow = [&](double length, double& rest, double original, const YieldLimits& yield, uint32_t material,
+                  double compliance, double lambda, YieldForce& carries) {
+    const double moved = plasticRestLength(length, rest, original, yield, laws[material]);
+    if (moved == rest) return;
+    if (params_.yield_limited) carries = yieldForce(compliance, moved, original, yield, laws[material]);
+    // A rigid constraint (alpha = 0) has no defined yield force: its flow is counted at zero work.
+    if (compliance > 0) {
+      const double force_N = std::min(std::abs(lambda) * inv_h2, std::abs(length - moved) / compliance);
+      work_J += force_N * std::abs(moved - rest);
+    }
+    rest = moved;
+  };
+  for (std::size_t k = 0; k < settings.edges.size(); ++k) {
+    const EdgeConstraint& c = settings.edges[k];
+    flow((x[c.a] - x[c.b]).norm(), state_.edge_rest_m[k], settings.edge_rest_m[k], settings.edge_yield[k],
+         c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
+  }
+  for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
+    const SpokeConstraint& c = settings.spokes[k];
+    flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
+         settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
+         spoke_lambda_[k], spoke_yield_N_[k]);
+  }
+  for (std::size_t k = 0; k < settings.bends.size(); ++k) {
+    const BendConstraint& c = settings.bends[k];
+    flow((x[c.left] - x[c.right]).norm(), state_.bend_rest_m[k], settings.bend_rest_m[k],
+         settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k], bend_yield_N_[k]);
+  }
+  state_.plastic_work_J += work_J;
+  report.plastic_work_J += work_J;
+}
+
+BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state) {
+  BodyEnergy e;
+  const auto& x = state.positions_m;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    e.kinetic_J += 0.5 * settings.mass_kg[i] * state.velocities_mps[i].squaredNorm();
+  auto elastic = [&e](double c, double compliance) {
+    if (compliance > 0) e.elastic_J += 0.5 * c * c / compliance;
+  };
+  for (std::size_t k = 0; k < settings.edges.size(); ++k) {
+    const auto& c = settings.edges[k];
+    elastic((x[c.a] - x[c.b]).norm() - state.edge_rest_m[k], c.compliance_m_per_N);
+  }
+  for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
+    const auto& c = settings.spokes[k];
+    elastic((x[c.point] - settings.core_m - settings.spoke_anchor_m[k]).norm() - state.spoke_rest_m[k],
+            c.compliance_m_per_N);
+  }
+  for (std::size_t k = 0; k < settings.bends.size(); ++k) {
+    const auto& c = settings.bends[k];
+    elastic((x[c.left] - x[c.right]).norm() - state.bend_rest_m[k], c.compliance_m_per_N);
+  }
+  return e;
+}
+
+}  // namespace deform
