@@ -116,9 +116,8 @@ Figure minorHitsFigure(const FigureOptions& o) {
       "%zu "
       "control points after knocking over a small tree and a shrub (rigid for the hull, denting the body by "
       "their contact impulses) and nudging a 0.2 m steel bollard at 15 km/h; coloured by permanent "
-      "displacement (red %.3f m, blue none), residual crush %.3f m. At this mesh's 60 control points the "
-      "bollard falls between two front points and meets the backstop (%.2f m of intrusion with no point "
-      "pushed): a limit of coarse levels of detail against thin posts.",
+      "displacement (red %.3f m, blue none), residual crush %.3f m; the car went %.2f m into what it hit "
+      "(the face contacts dent the surface between the control points).",
       car.dented.positions_m.size(), car.control_points, car.metrics.max_deviation_m,
       car.metrics.max_residual_crush_m, car.metrics.max_dynamic_crush_m);
   return {"minor_hits.png", caption};
