@@ -51,9 +51,7 @@ double Simulation::Impl::carKineticEnergy(const DeformableCar& dc) const {
 }
 
 bool crushable(const World& world, EntityRef e) {
-  if (e.kind == EntityRef::Kind::Car) return true;
-  const ObstacleKind kind = world.obstacleKind(e.index);
-  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
+  return e.kind == EntityRef::Kind::Car || crushesBody(world.obstacleKind(e.index));
 }
 
 bool vegetation(const World& world, EntityRef e) {

@@ -173,13 +173,10 @@ struct World::Impl {
     if (kind == kCarKind && crush_allowance_m[index] > 0) return GeomRole::SoftHull;
     return GeomRole::Plain;
   }
-  /// Anything but the ground, ramps and vegetation (a light, thin tree is pushed over by the hull's rigid
-  /// contact: between the control points it would otherwise pass into the car unresisted).
+  /// crushesBody (world.hpp); a car always.
   bool crushable(dGeomID geom) const {
     const EntityRef e = entityOf(geom);
-    if (e.kind == EntityRef::Kind::Car) return true;
-    const ObstacleKind kind = obstacles[e.index].kind;
-    return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
+    return e.kind == EntityRef::Kind::Car || crushesBody(obstacles[e.index].kind);
   }
 
   ObstacleId addObstacle(ObstacleEntry entry) {

@@ -42,6 +42,15 @@ enum class ObstacleKind : uint8_t {
   ConvexMesh,  ///< the convex hull of a mesh (e.g. a jersey barrier), static or free
 };
 
+/// Whether an obstacle of this kind crushes a car's deformable body (its soft hull detects it, deform
+/// dents the body against it, the backstop core is rigid against it): anything but the ground, ramps and
+/// vegetation (a light, thin tree is pushed over by the hull's rigid contact; between the control points
+/// it would otherwise pass into the car unresisted). Other cars always do. The one definition the world
+/// and the crush coupling share.
+inline bool crushesBody(ObstacleKind kind) {
+  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
+}
+
 enum class PostShape : uint8_t { Cylinder, Capsule };
 
 /// A car or an obstacle.
