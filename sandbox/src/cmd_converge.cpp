@@ -22,6 +22,7 @@ namespace {
 struct ConvergeFlags {
   std::string out_dir = "out/converge";
   bool quick = false;
+  std::vector<std::string> sets;  ///< scene overrides for every run (the level of detail is set last)
 };
 
 /// One scene at one level of detail.
@@ -33,9 +34,10 @@ struct ConvergeRow {
   double change_from_finest = 0;  ///< residual crush relative to the finest level's, minus one [1]
 };
 
-ConvergeRow runOne(const std::string& scene, std::size_t n) {
-  const std::vector<scenes::Override> overrides = {
-      scenes::parseOverride("vehicle.deformation.control_points=" + std::to_string(n))};
+ConvergeRow runOne(const std::string& scene, std::size_t n, const std::vector<std::string>& sets) {
+  std::vector<scenes::Override> overrides;
+  for (const std::string& set : sets) overrides.push_back(scenes::parseOverride(set));
+  overrides.push_back(scenes::parseOverride("vehicle.deformation.control_points=" + std::to_string(n)));
   scenes::SceneRun run(scenes::loadScene(scene, overrides));
   run.runToEnd();
   const vehicle::CrashMetrics m = run.simulation().metrics(run.carId(0));
@@ -127,7 +129,7 @@ void runConvergeCommand(const ConvergeFlags& flags) {
   for (const std::string& name : names) {
     const std::size_t first = rows.size();
     for (std::size_t n : levels) {
-      rows.push_back(runOne(name, n));
+      rows.push_back(runOne(name, n, flags.sets));
       std::printf("%s, %zu points: residual crush %.3f m\n", name.c_str(), n, rows.back().residual_crush_m);
       std::fflush(stdout);
     }
@@ -147,6 +149,11 @@ void registerConvergeCommand(CLI::App& app) {
   cmd->add_option("--out", flags->out_dir, "Folder for converge.csv, converge.md and converge.png")
       ->capture_default_str();
   cmd->add_flag("--quick", flags->quick, "60 and 250 points only (seconds)");
+  cmd->add_option(
+         "--set", flags->sets,
+         "Override a scene key in every run: --set vehicle.deformation.yield_limited=true (repeatable)")
+      ->expected(1)
+      ->take_all();
   cmd->callback([flags] { runConvergeCommand(*flags); });
 }
 
