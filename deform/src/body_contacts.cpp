@@ -9,6 +9,44 @@
 #include <variant>
 
 namespace deform {
+namespace {
+
+/// For a point inside `shape` at `end_m` that was at `start_m` when the substep began (relative to the
+/// obstacle): `p` becomes the contact at the face it came in through, or, if it was inside already, at the
+/// face nearest it then.
+void enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m, const Eigen::Vector3d& end_m,
+               Penetration& p) {
+  // A point that came in through a face this substep goes back out through it, not through whichever
+  // face is nearest now: in a thin wall met faster than half its thickness per substep the nearest face
+  // is the far one, and the point would pass through. The entry is found by bisection of the point's
+  // path relative to the obstacle (start outside, end inside); `p` becomes the contact at that face.
+  constexpr int kBisections = 12;  // the entry to 1/4096 of the substep's travel
+  Penetration probe;
+  if (penetration(shape, start_m, probe) && probe.depth_m > 0) {
+    // Inside already (a correction after the contacts left it a little in): out through the face that
+    // was nearest when the substep began.
+    const double depth_m = probe.normal.dot(start_m + probe.depth_m * probe.normal - end_m);
+    if (depth_m > 0) {
+      p.normal = probe.normal;
+      p.depth_m = depth_m;
+    }
+    return;
+  }
+  Eigen::Vector3d outside = start_m, inside = end_m;
+  for (int k = 0; k < kBisections; ++k) {
+    const Eigen::Vector3d middle = 0.5 * (outside + inside);
+    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside : outside) = middle;
+  }
+  if (!penetration(shape, inside, probe) || !(probe.depth_m > 0)) return;
+  // The plane of the entry face, and the end point's depth below it.
+  const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;
+  const double depth_m = probe.normal.dot(surface_m - end_m);
+  if (!(depth_m > 0)) return;
+  p.normal = probe.normal;
+  p.depth_m = depth_m;
+}
+
+}  // namespace
 
 Eigen::Vector3d DeformableBody::ShiftedSupport::support(const void* user, const Eigen::Vector3d& direction) {
   const auto& self = *static_cast<const ShiftedSupport*>(user);
@@ -73,38 +111,6 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k));
   }
   return inside;
-}
-
-void DeformableBody::enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m,
-                               const Eigen::Vector3d& end_m, Penetration& p) {
-  // A point that came in through a face this substep goes back out through it, not through whichever
-  // face is nearest now: in a thin wall met faster than half its thickness per substep the nearest face
-  // is the far one, and the point would pass through. The entry is found by bisection of the point's
-  // path relative to the obstacle (start outside, end inside); `p` becomes the contact at that face.
-  constexpr int kBisections = 12;  // the entry to 1/4096 of the substep's travel
-  Penetration probe;
-  if (penetration(shape, start_m, probe) && probe.depth_m > 0) {
-    // Inside already (a correction after the contacts left it a little in): out through the face that
-    // was nearest when the substep began.
-    const double depth_m = probe.normal.dot(start_m + probe.depth_m * probe.normal - end_m);
-    if (depth_m > 0) {
-      p.normal = probe.normal;
-      p.depth_m = depth_m;
-    }
-    return;
-  }
-  Eigen::Vector3d outside = start_m, inside = end_m;
-  for (int k = 0; k < kBisections; ++k) {
-    const Eigen::Vector3d middle = 0.5 * (outside + inside);
-    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside : outside) = middle;
-  }
-  if (!penetration(shape, inside, probe) || !(probe.depth_m > 0)) return;
-  // The plane of the entry face, and the end point's depth below it.
-  const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;
-  const double depth_m = probe.normal.dot(surface_m - end_m);
-  if (!(depth_m > 0)) return;
-  p.normal = probe.normal;
-  p.depth_m = depth_m;
 }
 
 uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {

@@ -25,7 +25,7 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     for (const ContactPoint& c : contacts_)
       if (c.moved_m.squaredNorm() > 0) held_.push_back({c.point, c.shape, c.normal});
     for (const FaceContact& c : face_contacts_)
-      for (int j = 0; j < 3; ++j)
+      for (int j = 0; j < (c.corners[2] == c.corners[0] ? 2 : 3); ++j)  // an edge contact: two corners
         if (c.moved_m[j].squaredNorm() > 0) held_.push_back({c.corners[j], c.shape, c.normal});
   }
   // Jacobi over the held points, so that no point's index order decides where the stop acts: each pass
@@ -132,30 +132,6 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   }
   state_.plastic_work_J += work_J;
   report.plastic_work_J += work_J;
-}
-
-BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state) {
-  BodyEnergy e;
-  const auto& x = state.positions_m;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    e.kinetic_J += 0.5 * settings.mass_kg[i] * state.velocities_mps[i].squaredNorm();
-  auto elastic = [&e](double c, double compliance) {
-    if (compliance > 0) e.elastic_J += 0.5 * c * c / compliance;
-  };
-  for (std::size_t k = 0; k < settings.edges.size(); ++k) {
-    const auto& c = settings.edges[k];
-    elastic((x[c.a] - x[c.b]).norm() - state.edge_rest_m[k], c.compliance_m_per_N);
-  }
-  for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
-    const auto& c = settings.spokes[k];
-    elastic((x[c.point] - settings.core_m - settings.spoke_anchor_m[k]).norm() - state.spoke_rest_m[k],
-            c.compliance_m_per_N);
-  }
-  for (std::size_t k = 0; k < settings.bends.size(); ++k) {
-    const auto& c = settings.bends[k];
-    elastic((x[c.left] - x[c.right]).norm() - state.bend_rest_m[k], c.compliance_m_per_N);
-  }
-  return e;
 }
 
 }  // namespace deform

@@ -139,6 +139,7 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
     substep(h, placed_, inputs, report);
   }
   last_substep_s_ = h;
+  carried_elastic_J_ = -1;  // the multipliers changed
   state_.time_s += dt_s;
   // Re-centre on the core: positions and velocities stay relative to it; the caller moves its rigid body.
   report.core_displacement_m = core_shift_m_;
@@ -169,6 +170,7 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
 
 double DeformableBody::carriedElasticEnergy_J() const {
   if (!(last_substep_s_ > 0)) return 0;
+  if (carried_elastic_J_ >= 0) return carried_elastic_J_;
   const BodySettings& s = *settings_;
   const double inv_h2 = 1.0 / (last_substep_s_ * last_substep_s_);
   double energy_J = 0;
@@ -179,6 +181,7 @@ double DeformableBody::carriedElasticEnergy_J() const {
   for (std::size_t k = 0; k < s.edges.size(); ++k) add(s.edges[k].compliance_m_per_N, edge_lambda_[k]);
   for (std::size_t k = 0; k < s.spokes.size(); ++k) add(s.spokes[k].compliance_m_per_N, spoke_lambda_[k]);
   for (std::size_t k = 0; k < s.bends.size(); ++k) add(s.bends[k].compliance_m_per_N, bend_lambda_[k]);
+  carried_elastic_J_ = energy_J;
   return energy_J;
 }
 
@@ -373,32 +376,6 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;
   report.core_impulse_Ns += to_core_Ns;
   report.contact_impulse_Ns += contact_push * inv_h;
-}
-
-double maxDeviation(const BodySettings& settings, const BodyState& state) {
-  double worst2 = 0;
-  for (std::size_t i = 0; i < state.positions_m.size(); ++i)
-    worst2 = std::max(worst2, (state.positions_m[i] - settings.rest_positions_m[i]).squaredNorm());
-  return std::sqrt(worst2);
-}
-
-double constraintStrainRms(const BodySettings& settings, const BodyState& state) {
-  double sum2 = 0;
-  std::size_t count = 0;
-  const auto add = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, double rest_m) {
-    if (!(rest_m > 0)) return;
-    const double strain = ((a - b).norm() - rest_m) / rest_m;
-    sum2 += strain * strain;
-    ++count;
-  };
-  const auto& x = state.positions_m;
-  for (std::size_t k = 0; k < settings.edges.size(); ++k)
-    add(x[settings.edges[k].a], x[settings.edges[k].b], state.edge_rest_m[k]);
-  for (std::size_t k = 0; k < settings.spokes.size(); ++k)
-    add(x[settings.spokes[k].point], settings.core_m + settings.spoke_anchor_m[k], state.spoke_rest_m[k]);
-  for (std::size_t k = 0; k < settings.bends.size(); ++k)
-    add(x[settings.bends[k].left], x[settings.bends[k].right], state.bend_rest_m[k]);
-  return count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;
 }
 
 }  // namespace deform

@@ -457,5 +457,12 @@ TEST_CASE("Crush: bad deformation settings name the field", "[crush]") {
   bad = {};
   bad.control_points = 2;
   CHECK_THROWS_AS(sim.addDeformableCar(sedan(), {}, {}, bad), deform::InputError);
+  // A shell that would leave the chassis no mass, or (its points on the surface) no inertia.
+  for (double fraction : {1.0, 0.95}) {
+    bad = {};
+    bad.shell_mass_fraction = fraction;
+    CHECK_THROWS_WITH(sim.addDeformableCar(sedan(), {}, {}, bad),
+                      Catch::Contains("vehicle.deformation.shell_mass_fraction"));
+  }
   CHECK(sim.deformableCount() == 0);
 }

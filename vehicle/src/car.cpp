@@ -167,9 +167,9 @@ void Car::carryShell(double shell_mass_kg, const Eigen::Matrix3d& shell_inertia_
   if (!(shell_mass_kg >= 0) || !(rest_kg > 0.01 * settings_.mass_kg) ||
       !(principal.eigenvalues().minCoeff() > 0.01 * inertia_kg_m2_.trace() / 3))
     throw deform::InputError(
-        "vehicle.deformation.shell_mass_fraction: the shell would carry the whole car's mass or inertia "
-        "(a chassis of " +
-        std::to_string(rest_kg) + " kg is left); lower the fraction");
+        "vehicle.deformation.shell_mass_fraction: the shell's points would carry nearly all of the car's " +
+        std::string(rest_kg > 0.01 * settings_.mass_kg ? "inertia (they lie on its surface)" : "mass") +
+        ", leaving the chassis none; lower the fraction");
   setChassisMass(rest_kg, rest_inertia);
 }
 

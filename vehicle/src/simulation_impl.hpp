@@ -15,9 +15,9 @@
 
 namespace vehicle {
 
-/// Kinetic energy of a rigid body: translation plus rotation (I in the body axes) [J].
-double kineticEnergy(const Car& car);  ///< of the ODE chassis [J]
-/// The one definition of what crushes the body: anything but the ground, ramps and vegetation.
+/// Kinetic energy of the ODE chassis: translation plus rotation (its inertia in the body axes) [J].
+double kineticEnergy(const Car& car);
+/// What crushes the body: another car, or an obstacle crushesBody (world.hpp) accepts.
 bool crushable(const World& world, EntityRef e);
 /// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
 bool vegetation(const World& world, EntityRef e);

@@ -94,10 +94,6 @@ class DeformableBody {
                StepReport& report);
   /// Fills contacts_; returns how many points are inside an obstacle.
   uint32_t findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs, double h);
-  /// For a point inside `shape` at `end_m` that was outside at `start_m` (relative to the obstacle):
-  /// `p` becomes the contact at the face it came in through.
-  static void enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m,
-                        const Eigen::Vector3d& end_m, Penetration& p);
   /// `shapes` moved back along their velocities to where they are `behind_s` before the step's end.
   void placeObstacles(const StepInputs& inputs, double behind_s);
   void plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h);
@@ -120,6 +116,8 @@ class DeformableBody {
   };
   RigidMoments rigid_moments_;
   double last_substep_s_ = 0;  ///< h of the last substep (carriedElasticEnergy_J)
+  /// carriedElasticEnergy_J of the last substep, or negative until asked (a sleeping body's stays).
+  mutable double carried_elastic_J_ = -1;
 
   /// A support shape moved by `offset_m` (an obstacle part way along its path through the step).
   struct ShiftedSupport {

@@ -26,10 +26,8 @@ using Overrides = std::vector<std::string>;
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* kRunChecks =
-    "finite, < 1e10; no tunnelling; deviation <= cap; measured terms explain no more than the car lost, body "
-    "holds no more than "
-    "what hit it put in; same "
-    "hash twice; no ODE warning";
+    "finite, < 1e10; no tunnelling; deviation <= cap; measured terms explain no more than the car lost, "
+    "body holds no more than what hit it put in; same hash twice; no ODE warning";
 
 std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
   char text[256];
