@@ -8,18 +8,42 @@
 #include <cmath>
 #include <string>
 
+#include "material_field.hpp"
+
 namespace deform {
 namespace {
 
-/// Index of the material of a constraint over `points`: the last region holding all of them.
+using detail::MaterialField;
+using detail::MaterialShares;
+
+/// A constraint over `points` all listed by one region (by index) takes that region's material alone (the
+/// last such region); otherwise its shares of the material field over its skin, normalised.
 template <std::size_t N>
-uint32_t materialOf(const std::array<uint32_t, N>& points, const std::vector<std::vector<char>>& in_region) {
-  for (std::size_t r = in_region.size(); r-- > 0;) {
+MaterialShares sharesOf(const std::array<uint32_t, N>& points, const std::vector<std::vector<char>>& listed,
+                        MaterialShares shares) {
+  for (std::size_t r = listed.size(); r-- > 0;) {
+    if (listed[r].empty()) continue;
     bool all = true;
-    for (uint32_t p : points) all = all && in_region[r][p];
-    if (all) return static_cast<uint32_t>(r + 1);
+    for (uint32_t p : points) all = all && listed[r][p];
+    if (all) {
+      std::fill(shares.begin(), shares.end(), 0.0);
+      shares[r + 1] = 1.0;
+      return shares;
+    }
   }
-  return 0;
+  MaterialField::normalise(shares);
+  return shares;
+}
+
+/// sum_r share_r * member(material_r), as the default's value plus each region's difference from it, so
+/// a patch whose regions all hold the default's value gets that value to the last bit.
+template <typename Member>
+double blend(const MaterialShares& shares, const std::vector<Material>& materials, Member member) {
+  const double base = member(materials[0]);
+  double difference = 0;
+  for (std::size_t r = 1; r < shares.size(); ++r)
+    if (shares[r] > 0) difference += shares[r] * (member(materials[r]) - base);
+  return base + difference;
 }
 
 /// Compliance [m/N] of a constraint of stiffness `stiffness_N_per_m`; a constraint without stiffness is
@@ -84,7 +108,7 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
   // Materials and region membership.
   s.materials.push_back(description.material);
   s.max_deviation_m.assign(n, description.max_deviation_m);
-  std::vector<std::vector<char>> in_region;
+  std::vector<std::vector<char>> listed;  // per region, the points it selects by index (empty: none)
   for (std::size_t r = 0; r < description.regions.size(); ++r) {
     const MaterialRegion& region = description.regions[r];
     const std::string field = "regions[" + std::to_string(r) + "]";
@@ -97,16 +121,18 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
         member[i] = (p.array() >= region.box_m->min_m.array()).all() &&
                     (p.array() <= region.box_m->max_m.array()).all();
       }
+    std::vector<char> by_index(region.points.empty() ? 0 : n, 0);
     for (uint32_t p : region.points) {
       if (p >= n) throw InputError(field + ".points: index " + std::to_string(p) + " out of range");
       member[p] = 1;
+      by_index[p] = 1;
     }
     if (!std::isnan(region.max_deviation_m)) {
       checkDeviation(region.max_deviation_m, field + ".max_deviation_m");
       for (std::size_t i = 0; i < n; ++i)
         if (member[i]) s.max_deviation_m[i] = region.max_deviation_m;
     }
-    in_region.push_back(std::move(member));
+    listed.push_back(std::move(by_index));
   }
   for (std::size_t k = 0; k < description.max_deviation_overrides.size(); ++k) {
     const auto& [p, radius] = description.max_deviation_overrides[k];
@@ -127,11 +153,19 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
   // its corners.
   s.tributary_area_m2.assign(n, 0.0);
   std::vector<Eigen::Vector3d> vector_area(n, Eigen::Vector3d::Zero());
+  // The material field over each point's patch (its third of each triangle, by the hat function).
+  const MaterialField field(description.regions);
+  const MaterialShares no_shares(s.materials.size(), 0.0);
+  std::vector<MaterialShares> patch_shares(field.hasBoxes() ? n : 0, no_shares);
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d& a = mesh.points_m[t[0]];
     const Eigen::Vector3d third =
         (mesh.points_m[t[1]] - a).cross(mesh.points_m[t[2]] - a) / 6.0;  // area vector / 3
     for (uint32_t corner : t) vector_area[corner] += third;
+    if (field.hasBoxes())
+      for (int k = 0; k < 3; ++k)
+        field.addTriangle(a, mesh.points_m[t[1]], mesh.points_m[t[2]], k,
+                          patch_shares[t[static_cast<std::size_t>(k)]]);
   }
   // Constraint arrays, in mesh order (deterministic).
   for (const ControlEdge& e : mesh.edges) {
@@ -145,16 +179,27 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     const double wings_area = area(pa, pb, pl) + (e.left == e.right ? 0.0 : area(pb, pa, pr));
     // A membrane strip (Van Gelder 1998): k = E t (A_left + A_right) / L^2; it yields at the membrane
     // force per unit width times the strip's width, (A_left + A_right) / L.
-    const uint32_t edge_material = materialOf<2>({e.a, e.b}, in_region);
-    const Material& em = s.materials[edge_material];
+    // The strip's material: the field over both wings (springs side by side: their moduli add).
+    MaterialShares wing_shares = no_shares;
+    if (field.hasBoxes()) {
+      field.addTriangle(pa, pb, pl, -1, wing_shares);
+      if (e.left != e.right) field.addTriangle(pb, pa, pr, -1, wing_shares);
+    }
+    const MaterialShares strip = sharesOf<2>({e.a, e.b}, listed, wing_shares);
+    const auto& materials = s.materials;
     const double safe_length = std::max(length, kMinConstraintLength_m);
-    const double edge_stiffness = em.shell_stiffness_N_per_m * wings_area / (safe_length * safe_length);
+    const double edge_stiffness =
+        blend(strip, materials, [](const Material& m) { return m.shell_stiffness_N_per_m; }) * wings_area /
+        (safe_length * safe_length);
     const double edge_compliance = complianceOf(edge_stiffness);
     const double strip_width_m = wings_area / safe_length;
-    s.edges.push_back({e.a, e.b, edge_material, edge_compliance});
+    s.edges.push_back({e.a, e.b, MaterialField::dominant(strip), edge_compliance});
     s.edge_rest_m.push_back(length);
-    s.edge_yield.push_back({em.shell_tension_yield_N_per_m * strip_width_m * edge_compliance,
-                            em.shell_compression_yield_N_per_m * strip_width_m * edge_compliance});
+    s.edge_yield.push_back(
+        {blend(strip, materials, [](const Material& m) { return m.shell_tension_yield_N_per_m; }) *
+             strip_width_m * edge_compliance,
+         blend(strip, materials, [](const Material& m) { return m.shell_compression_yield_N_per_m; }) *
+             strip_width_m * edge_compliance});
     if (e.left == e.right) continue;  // an open edge has no bend
     // A bend across a nearly flat hinge adds no first-order bending stiffness (its gradient lies in the
     // plane the edges already hold) but makes the four points a flat tetrahedron with all six distances
@@ -175,14 +220,16 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     const double wing_distance = (pl - pr).norm();
     const double lever_m =
         h_left * h_right * std::sin(fold_rad) / std::max(wing_distance, kMinConstraintLength_m);
-    const uint32_t bend_material = materialOf<4>({e.a, e.b, e.left, e.right}, in_region);
-    const Material& bm = s.materials[bend_material];
-    const double hinge_stiffness_N_m = 6.0 * bm.shell_bending_stiffness_N_m * length * length / wings_area;
+    const MaterialShares hinge = sharesOf<4>({e.a, e.b, e.left, e.right}, listed, wing_shares);
+    const double bending_stiffness_N_m =
+        blend(hinge, materials, [](const Material& m) { return m.shell_bending_stiffness_N_m; });
+    const double yield_moment_N =
+        blend(hinge, materials, [](const Material& m) { return m.shell_yield_moment_N; });
+    const double hinge_stiffness_N_m = 6.0 * bending_stiffness_N_m * length * length / wings_area;
     const double bend_stiffness = lever_m > 0 ? hinge_stiffness_N_m / (lever_m * lever_m) : 0.0;
     const double bend_compliance = complianceOf(bend_stiffness);
-    const double bend_yield_m =
-        lever_m > 0 ? bm.shell_yield_moment_N * length / lever_m * bend_compliance : 0.0;
-    s.bends.push_back({e.left, e.right, e.a, e.b, bend_material, bend_compliance});
+    const double bend_yield_m = lever_m > 0 ? yield_moment_N * length / lever_m * bend_compliance : 0.0;
+    s.bends.push_back({e.left, e.right, e.a, e.b, MaterialField::dominant(hinge), bend_compliance});
     s.bend_rest_m.push_back(wing_distance);
     s.bend_yield.push_back({bend_yield_m, bend_yield_m});
   }
@@ -192,8 +239,8 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     // the patch seen along it, |a|: it yields at crush_strength |a| after the strain crush_yield_strain,
     // so k = strength |a| / (e_y L0). A flat obstacle pressing along d then meets strength x (a . d)
     // summed over the points it pushes: the pressure on the area it covers, at any N.
-    const uint32_t material = materialOf<1>({i}, in_region);
-    const Material& m = s.materials[material];
+    // Columns side by side under the patch: their yield forces add, and so do their stiffnesses.
+    const MaterialShares patch = sharesOf<1>({i}, listed, field.hasBoxes() ? patch_shares[i] : no_shares);
     const Eigen::Vector3d& p = mesh.points_m[i];
     const double area_m2 = vector_area[i].norm();
     Eigen::Vector3d anchor = s.core_m;
@@ -204,9 +251,18 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     }
     s.tributary_area_m2[i] = area_m2;
     const double length = (p - anchor).norm();
-    const double yield_force_N = m.crush_strength_Pa * area_m2;
-    const double yield_m = m.crush_yield_strain * length;
-    const double compliance = complianceOf(yield_m > 0 ? yield_force_N / yield_m : 0.0);
+    const double yield_force_N =
+        blend(patch, s.materials, [](const Material& m) { return m.crush_strength_Pa; }) * area_m2;
+    // Columns of one material: k = F_y / (e_y L0). Of several side by side: their stiffnesses add.
+    const uint32_t material = MaterialField::dominant(patch);
+    const double yield_m = s.materials[material].crush_yield_strain * length;
+    const double stiffness_N_per_m =
+        patch[material] == 1.0 ? (yield_m > 0 ? yield_force_N / yield_m : 0.0)
+        : length > 0           ? blend(patch, s.materials,
+                                       [](const Material& m) { return m.crush_strength_Pa / m.crush_yield_strain; }) *
+                           area_m2 / length
+                     : 0.0;
+    const double compliance = complianceOf(stiffness_N_per_m);
     s.spokes.push_back({i, material, compliance});
     s.spoke_rest_m.push_back(length);
     s.spoke_anchor_m.push_back(anchor - s.core_m);

@@ -54,6 +54,12 @@ bool JsonObject::has(const std::string& key) const {
   return value_->contains(key);
 }
 
+std::vector<std::string> JsonObject::keys() const {
+  std::vector<std::string> out;
+  for (auto it = value_->begin(); it != value_->end(); ++it) out.push_back(it.key());
+  return out;
+}
+
 const nlohmann::json* JsonObject::raw(const std::string& key) {
   const auto it = value_->find(key);
   if (it == value_->end()) return nullptr;

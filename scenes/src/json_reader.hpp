@@ -20,6 +20,8 @@ class JsonObject {
   /// "a.b" for key "b" of this object at "a".
   std::string keyPath(const std::string& key) const;
   bool has(const std::string& key) const;
+  /// Every key of the object (in sorted order).
+  std::vector<std::string> keys() const;
   /// The raw value (marks the key read); nullptr when absent.
   const nlohmann::json* raw(const std::string& key);
 

@@ -62,6 +62,39 @@ Eigen::Vector3f colourKey(JsonObject& object, const Eigen::Vector3f& fallback) {
   return object.vector3("colour", fallback.cast<double>(), 0.0, 1.0).cast<float>();
 }
 
+std::string regionNames(const std::vector<vehicle::RegionMaterial>& map) {
+  std::string names;
+  for (const auto& r : map) names += (names.empty() ? "" : ", ") + r.name;
+  return names.empty() ? "none: material_map is uniform" : names;
+}
+
+/// vehicle.deformation.regions: per named region, the material members it sets and, optionally, where it
+/// is (box_min, box_max in fractions of the car's bounding box). A new name needs a box.
+void parseRegions(JsonObject& regions, std::vector<vehicle::RegionMaterial>& map) {
+  for (const std::string& name : regions.keys()) {
+    std::optional<JsonObject> object = regions.object(name, true);
+    auto found = std::find_if(map.begin(), map.end(), [&](const auto& r) { return r.name == name; });
+    if (found == map.end()) {
+      if (!object->has("box_min") || !object->has("box_max"))
+        regions.fail(name, "is not a region of the map (" + regionNames(map) +
+                               "); a new region needs box_min and box_max");
+      map.push_back({name, {}, {}});
+      found = map.end() - 1;
+    }
+    if (object->has("box_min") || object->has("box_max")) {
+      deform::Aabb box{object->vector3("box_min", std::nullopt, 0, 1),
+                       object->vector3("box_max", std::nullopt, 0, 1)};
+      if (!(box.min_m.array() <= box.max_m.array()).all())
+        object->fail("box_max", "must not be below box_min on any axis");
+      found->boxes = {box};
+    }
+    for (const vehicle::MaterialMember& member : vehicle::materialMembers())
+      if (object->has(member.key))
+        found->set(member.key, object->number(member.key, std::nullopt, member.min, member.max));
+    object->finish();
+  }
+}
+
 DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling) {
   DeformationConfig d = *deformationPreset("balanced");
   if (object) {
@@ -75,18 +108,12 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
     s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
     s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);
-    deform::Material& m = s.material;
-    m.crush_strength_Pa = object->number("crush_strength_Pa", m.crush_strength_Pa, 0, 1e9);
-    m.crush_yield_strain = object->number("crush_yield_strain", m.crush_yield_strain, 1e-6, 1);
-    m.shell_stiffness_N_per_m = object->number("shell_stiffness_N_per_m", m.shell_stiffness_N_per_m, 1, 1e12);
-    m.shell_tension_yield_N_per_m =
-        object->number("shell_tension_yield_N_per_m", m.shell_tension_yield_N_per_m, 0, 1e10);
-    m.shell_compression_yield_N_per_m =
-        object->number("shell_compression_yield_N_per_m", m.shell_compression_yield_N_per_m, 0, 1e10);
-    m.shell_bending_stiffness_N_m =
-        object->number("shell_bending_stiffness_N_m", m.shell_bending_stiffness_N_m, 0, 1e9);
-    m.shell_yield_moment_N = object->number("shell_yield_moment_N", m.shell_yield_moment_N, 0, 1e9);
-    m.hardening = object->number("hardening", m.hardening, 0, 100);
+    for (const vehicle::MaterialMember& member : vehicle::materialMembers())
+      s.material.*(member.member) =
+          object->number(member.key, s.material.*(member.member), member.min, member.max);
+    const std::string map = object->choice("material_map", std::string("uniform"), {"uniform", "sedan"});
+    s.regions = map == "sedan" ? vehicle::sedanMaterialMap() : std::vector<vehicle::RegionMaterial>{};
+    if (auto regions = object->object("regions")) parseRegions(*regions, s.regions);
     s.shell_mass_fraction = object->number("shell_mass_fraction", s.shell_mass_fraction, 1e-3, 1);
     s.damping = object->number("damping", s.damping, 0, 1000);
     s.contact_friction = object->number("contact_friction", s.contact_friction, 0, 10);

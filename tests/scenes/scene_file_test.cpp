@@ -187,3 +187,44 @@ TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
   CHECK(wall.vehicles[0].start.speed_kmh == 56);
   CHECK(scenes::loadScene("car_to_car").vehicles.size() == 2);
 }
+
+TEST_CASE("the material map: named regions, their values, new regions, and refusals", "[scenes]") {
+  // Uniform by default: no regions.
+  CHECK(scenes::parseScene(minimalScene(), "test.json").vehicles[0].deformation.settings.regions.empty());
+
+  json doc = minimalScene();
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.material_map=sedan"));
+  scenes::applyOverride(doc,
+                        scenes::parseOverride("vehicle.deformation.regions.doors.crush_strength_Pa=3e5"));
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.regions.sill.box_min=[0.3,0,0]"));
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.regions.sill.box_max=[0.7,1,0.1]"));
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.regions.sill.hardening=0.5"));
+  const auto regions = scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.regions;
+  std::vector<std::string> names;
+  for (const auto& r : regions) names.push_back(r.name);
+  CHECK(names == std::vector<std::string>{"bonnet", "boot", "doors", "pillars", "roof", "bumper", "sill"});
+  CHECK(regions[2].get("crush_strength_Pa") == 3e5);
+  CHECK(regions[4].get("crush_strength_Pa") == 6e4);  // the roof keeps the map's value
+  REQUIRE(regions[6].boxes.size() == 1);
+  CHECK(regions[6].boxes[0].max_m.z() == 0.1);
+  CHECK(regions[6].get("hardening") == 0.5);
+
+  json bad = minimalScene();
+  bad["vehicle"]["deformation"]["regions"]["doors"]["crush_strength_Pa"] = 1;
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.regions.doors") &&
+                               Catch::Contains("material_map is uniform"));
+  bad["vehicle"]["deformation"]["material_map"] = "sedan";
+  bad["vehicle"]["deformation"]["regions"]["doors"]["crush_strength"] = 1;
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.regions.doors.crush_strength"));
+  bad = minimalScene();
+  bad["vehicle"]["deformation"]["material_map"] = "sedan";
+  bad["vehicle"]["deformation"]["regions"]["roof"]["box_min"] = {0.5, 0, 0.9};
+  bad["vehicle"]["deformation"]["regions"]["roof"]["box_max"] = {0.4, 1, 1};
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.regions.roof.box_max"));
+  bad["vehicle"]["deformation"]["regions"]["roof"]["box_max"] = {0.6, 1, 1};
+  bad["vehicle"]["deformation"]["regions"]["roof"]["crush_strength_Pa"] = -1;
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.regions.roof.crush_strength_Pa"));
+  bad = minimalScene();
+  bad["vehicle"]["deformation"]["material_map"] = "steel";
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.material_map"));
+}

@@ -128,6 +128,8 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   deform::BodyDescription description;
   description.material = deformation.material;
   description.max_deviation_m = deformation.max_deviation_m;
+  description.regions =
+      placeMaterialMap(deformation.regions, deformation.material, deform::boundingBox(model.body));
   dc->body_settings =
       std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
   deform::SolverParams params;

@@ -18,6 +18,7 @@
 //
 // Contract names (the scene runner's): WorldSettings, CarId, CarStart, VehicleSettings are world.hpp's
 // and vehicle_settings.hpp's types of those names.
+#include <vehicle/material_map.hpp>
 #include <vehicle/world.hpp>
 
 #include <deform/builtin_meshes.hpp>
@@ -52,6 +53,10 @@ struct DeformationSettings {
   double max_deviation_m = 1.0;
   /// The body's material (crush strength, shell membrane and bending, yield, hardening).
   deform::Material material = sedanMaterial();
+  /// Named regions of the body with their own values of the material (material_map.hpp), e.g.
+  /// sedanMaterialMap(). Empty (the default until that map is calibrated, docs/CRASH_CALIBRATION.md):
+  /// one material everywhere.
+  std::vector<RegionMaterial> regions;
   /// Share of the vehicle mass carried by the control points in the deformation dynamics [-]: the
   /// crushable body shell (a body-in-white is about a quarter of a car's kerb mass). (0, 1].
   double shell_mass_fraction = 0.25;
