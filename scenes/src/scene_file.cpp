@@ -118,6 +118,23 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.damping = object->number("damping", s.damping, 0, 1000);
     s.contact_friction = object->number("contact_friction", s.contact_friction, 0, 10);
     s.crush_allowance_m = object->number("crush_allowance_m", s.crush_allowance_m, 0, 10);
+    s.backstop = object->choice("backstop", std::string("rigid_parts"), {"rigid_parts", "shrunk_hull"}) ==
+                         "shrunk_hull"
+                     ? vehicle::Backstop::ShrunkHull
+                     : vehicle::Backstop::RigidParts;
+    if (object->has("rigid_parts")) {
+      s.rigid_parts.clear();
+      for (JsonObject& part : object->objects("rigid_parts")) {
+        deform::Aabb box{part.vector3("box_min", std::nullopt, 0, 1),
+                         part.vector3("box_max", std::nullopt, 0, 1)};
+        if (!(box.min_m.array() <= box.max_m.array()).all())
+          part.fail("box_max", "must not be below box_min on any axis");
+        part.finish();
+        s.rigid_parts.push_back(box);
+      }
+      if (s.rigid_parts.empty())
+        object->fail("rigid_parts", "needs at least one box (or backstop shrunk_hull)");
+    }
     s.inertial_scale = object->number("inertial_scale", s.inertial_scale, 0, 10);
     s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
     s.yield_limited = object->boolean("yield_limited", s.yield_limited);

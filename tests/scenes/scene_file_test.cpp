@@ -228,3 +228,31 @@ TEST_CASE("the material map: named regions, their values, new regions, and refus
   bad["vehicle"]["deformation"]["material_map"] = "steel";
   CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.material_map"));
 }
+
+TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or the shrunk hull", "[scenes]") {
+  const auto settings = [](const json& doc) {
+    return scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings;
+  };
+  CHECK(settings(minimalScene()).backstop == vehicle::Backstop::RigidParts);
+  CHECK(settings(minimalScene()).rigid_parts.size() == 2);  // passenger cell, engine block
+  json doc = minimalScene();
+  doc["vehicle"]["deformation"]["rigid_parts"] =
+      json::parse(R"([{"box_min": [0.3, 0.25, 0.1], "box_max": [0.7, 0.75, 0.8]}])");
+  REQUIRE(settings(doc).rigid_parts.size() == 1);
+  CHECK(settings(doc).rigid_parts[0].min_m.x() == 0.3);
+  doc["vehicle"]["deformation"]["backstop"] = "shrunk_hull";
+  CHECK(settings(doc).backstop == vehicle::Backstop::ShrunkHull);
+
+  json bad = minimalScene();
+  bad["vehicle"]["deformation"]["rigid_parts"] = json::array();
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.rigid_parts"));
+  bad["vehicle"]["deformation"]["rigid_parts"] =
+      json::parse(R"([{"box_min": [0.3, 0, 0], "box_max": [0.2, 1, 1]}])");
+  CHECK_THAT(refusal(bad), Catch::Contains("rigid_parts[0].box_max"));
+  bad["vehicle"]["deformation"]["rigid_parts"] =
+      json::parse(R"([{"box_min": [0.3, 0, 0], "box_max": [1.2, 1, 1]}])");
+  CHECK_THAT(refusal(bad), Catch::Contains("rigid_parts[0].box_max"));
+  bad = minimalScene();
+  bad["vehicle"]["deformation"]["backstop"] = "airbag";
+  CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.backstop"));
+}

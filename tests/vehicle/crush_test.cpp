@@ -419,7 +419,7 @@ TEST_CASE("Crush: the collision hull follows the dent after the contact; a secon
   double hull_front = -1e300;
   for (const auto& p : car.collisionHull().points_m) hull_front = std::max(hull_front, p.x());
   CHECK(hull_front < front - 0.5 * first.residual_crush_m);
-  CHECK(sim.world().crushAllowance(id) < DeformationSettings{}.crush_allowance_m);
+  CHECK(sim.world().crushes(id));  // the rigid parts stay where they are: the stroke is their distance
   DriverInput forward;
   forward.throttle = 1;
   car.setInput(forward);  // ... and drive into the wall again

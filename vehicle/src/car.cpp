@@ -104,7 +104,7 @@ Car::Car(dxWorld* world, dxSpace* space, void* geom_data, const deform::ControlM
 Car::~Car() {
   if (ray_) dGeomDestroy(ray_);
   if (convex_ && convex_->geom) dGeomDestroy(convex_->geom);
-  if (core_ && core_->geom) dGeomDestroy(core_->geom);
+  clearCore();
   if (body_) dBodyDestroy(body_);
 }
 
@@ -190,9 +190,14 @@ void Car::setCollisionHull(const deform::ControlMesh& hull) {
   hull_ = hull;
 }
 
+void Car::clearCore() {
+  for (auto& core : core_)
+    if (core->geom) dGeomDestroy(core->geom);
+  core_.clear();
+}
+
 void Car::setCoreHull(double allowance_m, void* geom_data) {
-  if (core_ && core_->geom) dGeomDestroy(core_->geom);
-  core_.reset();
+  clearCore();
   if (!(allowance_m > 0)) return;
   // Each point moved the stroke horizontally towards the centre of mass (at most to a tenth of its
   // distance); heights kept, so the core is as tall as the car and a wall cannot lift it over itself.
@@ -203,14 +208,35 @@ void Car::setCoreHull(double allowance_m, void* geom_data) {
     const double keep = length > 0 ? std::max(0.1, 1.0 - allowance_m / length) : 1.0;
     inner.emplace_back(r.x() * keep, r.y() * keep, r.z());
   }
-  const deform::ControlMesh core = deform::convexHull(inner, "crush backstop");
-  core_ = std::make_unique<ConvexGeom>();
-  core_->data = ode::makeConvexData(core.points_m, core.triangles);
-  core_->geom =
-      dCreateConvex(space_, core_->data.planes.data(), core_->data.face_count, core_->data.points.data(),
-                    core_->data.point_count, core_->data.polygons.data());
-  dGeomSetBody(core_->geom, body_);
-  dGeomSetData(core_->geom, geom_data);
+  addCoreGeom(inner, geom_data);
+}
+
+void Car::setCoreBoxes(const std::vector<deform::Aabb>& boxes_m, void* geom_data) {
+  clearCore();
+  // ODE boxes at an offset from the centre of mass (a convex geom must hold its body's origin, and an
+  // engine block does not).
+  for (const deform::Aabb& box : boxes_m) {
+    const Eigen::Vector3d size = box.size_m();
+    const Eigen::Vector3d centre = 0.5 * (box.min_m + box.max_m) - centre_of_mass_m_;
+    auto geom = std::make_unique<ConvexGeom>();
+    geom->geom =
+        dCreateBox(space_, std::max(size.x(), 1e-3), std::max(size.y(), 1e-3), std::max(size.z(), 1e-3));
+    dGeomSetBody(geom->geom, body_);
+    dGeomSetOffsetPosition(geom->geom, centre.x(), centre.y(), centre.z());
+    dGeomSetData(geom->geom, geom_data);
+    core_.push_back(std::move(geom));
+  }
+}
+
+void Car::addCoreGeom(const std::vector<Eigen::Vector3d>& points_body_m, void* geom_data) {
+  const deform::ControlMesh core = deform::convexHull(points_body_m, "crush backstop");
+  auto geom = std::make_unique<ConvexGeom>();
+  geom->data = ode::makeConvexData(core.points_m, core.triangles);
+  geom->geom = dCreateConvex(space_, geom->data.planes.data(), geom->data.face_count,
+                             geom->data.points.data(), geom->data.point_count, geom->data.polygons.data());
+  dGeomSetBody(geom->geom, body_);
+  dGeomSetData(geom->geom, geom_data);
+  core_.push_back(std::move(geom));
 }
 
 ObstacleShape Car::shape() const {

@@ -181,8 +181,10 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     // convex geom needs the centre inside (its planes' offsets positive), or it warns and mis-collides.
     if (enclosesWithMargin(dented, dc.body_settings->core_m, 0.01)) {
       car.setCollisionHull(dented);
-      const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
-      world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+      if (dc.settings.backstop == Backstop::ShrunkHull) {  // the stroke left; rigid parts stay where they are
+        const double used = deform::maxDeviation(*dc.body_settings, dc.body->state());
+        world.setCrushAllowance(dc.id, std::max(0.0, dc.settings.crush_allowance_m - used));
+      }
     }
     dc.hull_dirty = false;
   }

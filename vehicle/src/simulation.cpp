@@ -128,8 +128,8 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   deform::BodyDescription description;
   description.material = deformation.material;
   description.max_deviation_m = deformation.max_deviation_m;
-  description.regions =
-      placeMaterialMap(deformation.regions, deformation.material, deform::boundingBox(model.body));
+  const deform::Aabb bounds_m = deform::boundingBox(model.body);
+  description.regions = placeMaterialMap(deformation.regions, deformation.material, bounds_m);
   dc->body_settings =
       std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
   deform::SolverParams params;
@@ -145,7 +145,13 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   dc->id = id;
   Car& c = impl_->world.car(id);
   if (deformation.coupling == Coupling::Crush) {
-    impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
+    if (deformation.backstop == Backstop::ShrunkHull) {
+      impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
+    } else {
+      std::vector<deform::Aabb> parts;
+      for (const deform::Aabb& f : deformation.rigid_parts) parts.push_back(placeFractions(f, bounds_m));
+      impl_->world.setRigidParts(id, parts);
+    }
     // Crush: the shell's points are real mass, moving on their own and pulling on the chassis through
     // the spokes (its weight and inertia included), so the ODE chassis carries the rest of the car.
     Eigen::Matrix3d shell_inertia = Eigen::Matrix3d::Zero();

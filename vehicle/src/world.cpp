@@ -104,6 +104,8 @@ struct World::Impl {
   std::vector<std::unique_ptr<Car>> cars;
   std::vector<ObstacleEntry> obstacles;
   std::vector<double> crush_allowance_m;  ///< per car (setCrushAllowance) [m]
+  std::vector<char>
+      crush_coupled;  ///< per car: hull soft, backstop rigid (setCrushAllowance / setRigidParts)
   std::vector<ContactPoint> contacts;
   std::deque<dJointFeedback> feedback;  ///< one per contact; a deque so ODE's pointers stay valid
   std::vector<double> feedback_sign;    ///< -1 where ODE's body 1 is b (a is static): f1 acts on b
@@ -170,7 +172,7 @@ struct World::Impl {
     uint32_t kind = 0, index = 0;
     if (!ode::unpackEntity(dGeomGetData(geom), kind, index)) return GeomRole::Plain;
     if (kind == kCarCoreKind) return GeomRole::Core;
-    if (kind == kCarKind && crush_allowance_m[index] > 0) return GeomRole::SoftHull;
+    if (kind == kCarKind && crush_coupled[index]) return GeomRole::SoftHull;
     return GeomRole::Plain;
   }
   /// crushesBody (world.hpp); a car always.
@@ -243,6 +245,7 @@ struct World::Impl {
     cars.push_back(std::unique_ptr<Car>(new Car(world, space, ode::packEntity(kCarKind, id), hull,
                                                 car_settings, std::move(wheels), pose, velocity)));
     crush_allowance_m.push_back(0.0);
+    crush_coupled.push_back(0);
     return id;
   }
 };
@@ -491,7 +494,22 @@ ObstacleShape World::shapeOf(EntityRef entity) const {
 void World::setCrushAllowance(CarId id, double allowance_m) {
   requireNonNegative(allowance_m, "crush_allowance_m");
   impl_->crush_allowance_m.at(id) = allowance_m;
+  impl_->crush_coupled.at(id) = allowance_m > 0;
   impl_->cars.at(id)->setCoreHull(allowance_m, ode::packEntity(kCarCoreKind, id));
+}
+
+void World::setRigidParts(CarId id, const std::vector<deform::Aabb>& boxes_m) {
+  for (const deform::Aabb& box : boxes_m)
+    if (!box.min_m.allFinite() || !box.max_m.allFinite() || !(box.min_m.array() <= box.max_m.array()).all())
+      throw deform::InputError(
+          "rigid_parts: a box needs finite corners, its lower corner below its upper one");
+  impl_->crush_allowance_m.at(id) = 0;
+  impl_->crush_coupled.at(id) = !boxes_m.empty();
+  impl_->cars.at(id)->setCoreBoxes(boxes_m, ode::packEntity(kCarCoreKind, id));
+}
+
+bool World::crushes(CarId id) const {
+  return impl_->crush_coupled.at(id) != 0;
 }
 
 double World::crushAllowance(CarId id) const {

@@ -108,6 +108,12 @@ class Car {
   /// hull with every point moved `allowance_m` towards the centre of mass (then re-hulled), tagged with
   /// `geom_data`; none for an allowance of 0.
   void setCoreHull(double allowance_m, void* geom_data);
+  /// The crush backstop as the car's rigid parts (World::setRigidParts): one box geom on the chassis per
+  /// box (vehicle frame), tagged with `geom_data`; none for no boxes.
+  void setCoreBoxes(const std::vector<deform::Aabb>& boxes_m, void* geom_data);
+  void clearCore();
+  /// One backstop geom: the convex hull of `points_body_m` (relative to the centre of mass).
+  void addCoreGeom(const std::vector<Eigen::Vector3d>& points_body_m, void* geom_data);
 
   VehicleSettings settings_;
   std::vector<WheelSettings> wheel_settings_;
@@ -127,7 +133,7 @@ class Car {
   dxBody* body_ = nullptr;
   dxGeom* ray_ = nullptr;
   std::unique_ptr<ConvexGeom> convex_;
-  std::unique_ptr<ConvexGeom> core_;  ///< crush backstop, or null
+  std::vector<std::unique_ptr<ConvexGeom>> core_;  ///< crush backstop geoms (none: no backstop)
 };
 
 }  // namespace vehicle

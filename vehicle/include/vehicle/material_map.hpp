@@ -47,6 +47,15 @@ struct RegionMaterial {
 /// ratios, not from a calibration of this model.
 std::vector<RegionMaterial> sedanMaterialMap();
 
+/// A box in fractions of the car's bounding box placed on a car whose skin spans `bounds_m` (a fraction of
+/// 0 or 1 reaches 1 % beyond the box).
+deform::Aabb placeFractions(const deform::Aabb& fractions, const deform::Aabb& bounds_m);
+
+/// The sedan's rigid parts (DeformationSettings::rigid_parts), in fractions of its bounding box, and every
+/// car's default: the passenger cell (between the axles, the sills and the roof rails inside it) and the
+/// engine block ahead of it (docs/CRASH_CALIBRATION.md, "Rigid parts").
+std::vector<deform::Aabb> sedanRigidParts();
+
 /// The map placed on a car whose skin spans `bounds_m` (vehicle frame): each region's boxes scaled to
 /// the car (a box at a fraction 0 or 1 reaches 1 % beyond it), its material the car's with the region's
 /// values set. Throws deform::InputError naming "vehicle.deformation.regions.<name>" for a bad value.

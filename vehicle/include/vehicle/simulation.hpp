@@ -43,6 +43,9 @@ enum class Coupling : uint8_t {
 /// the crush does not depend on the level of detail, and nothing is scaled by the car's mass: a heavier
 /// car with the same material crushes more. The defaults are the calibration of docs/CRASH_CALIBRATION.md
 /// (the built-in 1500 kg sedan against 56 km/h full-width rigid-barrier tests).
+/// What stops a crushing car once its crush stroke is used up (DeformationSettings::backstop).
+enum class Backstop { RigidParts, ShrunkHull };
+
 struct DeformationSettings {
   std::size_t control_points = 60;  ///< control points of the deformable body (4 .. 5000) [-]
   double alpha = 3.5;               ///< skin: inverse-distance exponent for the render mesh [-]
@@ -67,6 +70,12 @@ struct DeformationSettings {
   /// Crush: intrusion of the chassis hull into what it hits beyond which ODE's rigid contact takes over
   /// (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below max_deviation_m.
   double crush_allowance_m = 0.8;
+  /// Crush: what stops the intrusion once the crush stroke is used up. RigidParts (the default): the
+  /// car's rigid parts, `rigid_parts`; ShrunkHull: the hull shrunk by crush_allowance_m.
+  Backstop backstop = Backstop::RigidParts;
+  /// The rigid parts, boxes in fractions of the car's bounding box (material_map.hpp: x 0 at the rear to
+  /// 1 at the front, y right to left, z bottom to top).
+  std::vector<deform::Aabb> rigid_parts = sedanRigidParts();
   /// Scale of the chassis's inertial (fictitious) forces on the control points [-].
   double inertial_scale = 0.0;
   /// Visual: share of each contact impulse of ODE's rigid contact handed to the control points [-] (the

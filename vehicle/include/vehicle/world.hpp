@@ -157,6 +157,13 @@ class World {
   /// deform::InputError for a negative or non-finite allowance.
   void setCrushAllowance(CarId id, double allowance_m);
   double crushAllowance(CarId id) const;
+  /// Crush coupling, as setCrushAllowance but with the backstop given as the car's rigid parts: boxes in
+  /// the vehicle frame [m] (a passenger cell, an engine block), rigid against what the hull meets once
+  /// it reaches them. No boxes keeps the car rigid. Throws deform::InputError for a box with a non-finite
+  /// corner or its lower corner above its upper one.
+  void setRigidParts(CarId id, const std::vector<deform::Aabb>& boxes_m);
+  /// Whether car `id` is in the crush coupling (its hull soft, a backstop rigid).
+  bool crushes(CarId id) const;
   /// A force on a car's chassis or a free obstacle at a world point, for the next step only (static
   /// obstacles and the ground ignore it) [N], [m]. Wakes a sleeping obstacle.
   void addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m);
