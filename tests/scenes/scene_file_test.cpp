@@ -187,3 +187,20 @@ TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
   CHECK(wall.vehicles[0].start.speed_kmh == 56);
   CHECK(scenes::loadScene("car_to_car").vehicles.size() == 2);
 }
+
+TEST_CASE("vehicle.deformation.skin_method takes idw or mls and refuses anything else", "[scenes]") {
+  json doc = minimalScene();
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);  // the paper's, the default
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.skin_method=mls"));
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::mls);
+  doc["vehicle"]["deformation"]["skin_method"] = "idw";
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);
+  doc["vehicle"]["deformation"]["skin_method"] = "rbf";
+  CHECK_THAT(refusal(doc),
+             Catch::Contains("test.json: vehicle.deformation.skin_method: unknown value 'rbf'"));
+  doc["vehicle"]["deformation"]["skin_method"] = 2;
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.skin_method"));
+}
