@@ -59,7 +59,7 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   std::optional<detail::PointKdTree> tree;
   if (use_tree) tree.emplace(control_rest_m);
   parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<detail::RankedPoint> ranked;
+    std::vector<detail::RankedPoint> ranked, candidates;
     std::vector<double> distance(K), weight(K);
     std::vector<Eigen::Vector3d> point(K);
     std::vector<uint32_t> chosen(K);
@@ -73,6 +73,23 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
         if (K < n)
           std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(K - 1), ranked.end());
         ranked.resize(K);
+      }
+      // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
+      // among the nearest few dozen, then (a large flat side of the hull) among all.
+      if (options.method == SkinMethod::mls && K < n && detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
+        const std::vector<detail::RankedPoint> nearest = ranked;
+        bool widened = false;
+        if (use_tree) {
+          tree->nearest(v, std::min(n, 4 * K + 16), candidates);
+          widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
+        }
+        if (!widened) {
+          ranked = nearest;
+          candidates.clear();
+          for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+          std::sort(candidates.begin(), candidates.end());
+          detail::widenSpan(v, control_rest_m, ranked, candidates);
+        }
       }
       // Slots in index order: deterministic, and the displacement reads walk forward through memory.
       std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.index < b.index; });

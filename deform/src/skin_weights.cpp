@@ -83,4 +83,80 @@ void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
   for (std::size_t k = 0; k < count; ++k) weight[k] += share * delta[k];
 }
 
+namespace {
+
+/// The plane of the chosen points: their mean [m], the unit direction across which they spread least,
+/// their standard deviation across it and along their widest direction [m].
+struct PointSpread {
+  Eigen::Vector3d mean_m;
+  Eigen::Vector3d thinnest;
+  double thickness_m;
+  double extent_m;
+};
+
+PointSpread pointSpread(const std::vector<Eigen::Vector3d>& control_m,
+                        const std::vector<RankedPoint>& chosen) {
+  PointSpread s;
+  s.mean_m.setZero();
+  for (const auto& c : chosen) s.mean_m += control_m[c.index];
+  s.mean_m /= static_cast<double>(chosen.size());
+  Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
+  for (const auto& c : chosen) {
+    const Eigen::Vector3d d = control_m[c.index] - s.mean_m;
+    covariance_m2 += d * d.transpose() / static_cast<double>(chosen.size());
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance_m2);
+  s.thinnest = eigen.eigenvectors().col(0);
+  s.thickness_m = std::sqrt(std::max(eigen.eigenvalues()[0], 0.0));
+  s.extent_m = std::sqrt(std::max(eigen.eigenvalues()[2], 0.0));
+  return s;
+}
+
+bool outOfSpan(const Eigen::Vector3d& v_m, const PointSpread& s) {
+  return std::abs((v_m - s.mean_m).dot(s.thinnest)) > 3.0 * s.thickness_m + 1e-9 * s.extent_m;
+}
+
+}  // namespace
+
+bool offsetOutOfSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
+                     const std::vector<RankedPoint>& chosen) {
+  return chosen.size() >= 4 && outOfSpan(v_m, pointSpread(control_m, chosen));
+}
+
+bool widenSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
+               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates) {
+  uint32_t added[2] = {0, 0};
+  PointSpread s = pointSpread(control_m, chosen);
+  for (int swap = 0; swap < 2 && chosen.size() >= 4; ++swap) {
+    if (!outOfSpan(v_m, s)) return true;
+    const double offset_m = std::abs((v_m - s.mean_m).dot(s.thinnest));
+    const RankedPoint* found = nullptr;
+    for (const RankedPoint& c : candidates) {
+      const bool taken =
+          std::any_of(chosen.begin(), chosen.end(), [&](const RankedPoint& o) { return o.index == c.index; });
+      if (!taken && std::abs((control_m[c.index] - s.mean_m).dot(s.thinnest)) >= 0.5 * offset_m) {
+        found = &c;
+        break;
+      }
+    }
+    if (!found) return false;
+    // The farthest of the points not swapped in leaves (a point just added is never swapped out again).
+    RankedPoint* leaving = nullptr;
+    for (RankedPoint& c : chosen) {
+      const bool was_added = std::find(added, added + swap, c.index) != added + swap;
+      if (!was_added && (!leaving || *leaving < c)) leaving = &c;
+    }
+    const RankedPoint before = *leaving;
+    *leaving = *found;
+    const PointSpread widened = pointSpread(control_m, chosen);
+    if (widened.thickness_m <= s.thickness_m) {  // flat again another way: keep what there was
+      *leaving = before;
+      return true;
+    }
+    added[swap] = found->index;
+    s = widened;
+  }
+  return true;
+}
+
 }  // namespace deform::detail

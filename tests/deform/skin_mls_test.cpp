@@ -68,6 +68,44 @@ TEST_CASE("mls reproduces a crash-sized affine map of the control points on the 
   CHECK(deform::affineReproductionErrorMax(dense, s.car.body.positions_m, s.control, map, 2) < 1e-5);
 }
 
+TEST_CASE("mls reaches vertices off a flat side of the hull: 250 and 1000 control points", "[skin][mls]") {
+  // At these levels of detail the eight nearest points of a vertex inside the car often all lie on one
+  // flat side of the hull; a point off that side is taken in their place.
+  Sedan s;
+  const deform::AffineMap map = deform::crashSizedAffineMap(s.centre_m);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : s.car.body.positions_m) points.push_back(p.cast<double>());
+  for (std::size_t n : {250u, 1000u}) {
+    CAPTURE(n);
+    const auto control = deform::buildControlMesh(points, n).points_m;
+    const auto mls = deform::Skin::build(s.car.body.positions_m, control, {3.5, 8, 2, SkinMethod::mls});
+    CHECK(deform::affineReproductionErrorMax(mls, s.car.body.positions_m, control, map, 2) < 1e-5);
+    CHECK(deform::skinWeightSpread(mls).largest_abs_weight < 20);
+  }
+}
+
+TEST_CASE("mls takes a point off the plane of the nearest ones when the vertex lies off it", "[skin][mls]") {
+  // A dense flat grid at z = 0 and a sparse one at z = 1: the K nearest of a vertex at z = 0.2 are all
+  // in the lower plane, so the fit needs one from the upper.
+  std::vector<Eigen::Vector3d> control;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) control.emplace_back(0.1 * i, 0.1 * j, 0.0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) control.emplace_back(0.9 * i, 0.9 * j, 1.0);
+  std::vector<Eigen::Vector3f> vertices;
+  for (const auto& p : test_points::cloud(500, 9))
+    vertices.emplace_back(float(0.95 + 1.4 * p.x()), float(0.95 + 1.4 * p.y()), float(0.2 + 0.2 * p.z()));
+  const deform::AffineMap map = deform::crashSizedAffineMap({1, 1, 0.5});
+  for (std::size_t k : {4u, 8u}) {
+    CAPTURE(k);
+    const auto mls = deform::Skin::build(vertices, control, {3.5, k, 1, SkinMethod::mls});
+    CHECK(deform::affineReproductionErrorMax(mls, vertices, control, map, 1) < 1e-5);
+    bool takes_upper = false;
+    for (std::size_t kk = 0; kk < k; ++kk) takes_upper = takes_upper || mls.slotIndex(0, kk) >= 400;
+    CHECK(takes_upper);
+  }
+}
+
 TEST_CASE("mls and idw weights sum to one for every vertex", "[skin][mls]") {
   Sedan s;
   for (SkinMethod method : {SkinMethod::idw, SkinMethod::mls}) {
