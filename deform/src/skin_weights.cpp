@@ -46,7 +46,8 @@ void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
     reach_m2 = std::max(reach_m2, distance_m[k] * distance_m[k]);
   }
   const Eigen::Vector3d offset_m = (v_m - r_m) - centroid_from_r_m;  // v - p*
-  std::vector<Eigen::Vector3d> p_hat_m(count);
+  thread_local std::vector<Eigen::Vector3d> p_hat_m;                 // scratch: no allocation per vertex
+  p_hat_m.resize(count);
   for (std::size_t k = 0; k < count; ++k)
     p_hat_m[k] = k == nearest ? Eigen::Vector3d(-centroid_from_r_m)
                               : Eigen::Vector3d((point_m[k] - r_m) - centroid_from_r_m);
@@ -66,7 +67,8 @@ void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
   }
   const Eigen::RowVector3d offset_per_m = offset_m.transpose() * inverse_per_m2;
   // The fit's change to the inverse-distance weights, delta_k = theta_k (v - p*)^T M^-1 p^_k (sum 0).
-  std::vector<double> delta(count);
+  thread_local std::vector<double> delta;
+  delta.resize(count);
   double delta_abs_sum = 0;
   for (std::size_t k = 0; k < count; ++k) {
     delta[k] = weight[k] * offset_per_m.dot(p_hat_m[k]);

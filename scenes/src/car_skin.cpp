@@ -12,9 +12,9 @@ CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& c
       mesh_(body),
       last_displacements_m_(control_rest_m.size(), Eigen::Vector3d::Zero()),
       moved_(control_rest_m.size(), 0),
-      around_(deform::vertexTriangles(body)) {
+      normals_(body) {
   if (mesh_.normals.size() != mesh_.positions_m.size()) {
-    deform::computeVertexNormals(mesh_);
+    normals_.computeAll(mesh_);
     normals_computed_ = true;
   }
 }
@@ -31,21 +31,11 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m)
                                                    mesh_.positions_m.data(), 0, &vertex_recomputed_);
   last_displacements_m_ = displacements_m;
   if (!normals_computed_) {
-    deform::computeVertexNormals(mesh_);
+    normals_.computeAll(mesh_);
     normals_computed_ = true;
-    return recomputed;
+  } else {
+    normals_.update(mesh_, vertex_recomputed_);
   }
-  // A normal changes when a triangle around its vertex has a moved corner.
-  normal_stale_.assign(mesh_.positions_m.size(), 0);
-  for (std::size_t v = 0; v < vertex_recomputed_.size(); ++v) {
-    if (!vertex_recomputed_[v]) continue;
-    for (std::size_t s = around_.begin[v]; s < around_.begin[v + 1]; ++s)
-      for (uint32_t corner : mesh_.triangles[around_.triangle[s]]) normal_stale_[corner] = 1;
-  }
-  stale_vertices_.clear();
-  for (std::size_t v = 0; v < normal_stale_.size(); ++v)
-    if (normal_stale_[v]) stale_vertices_.push_back(static_cast<uint32_t>(v));
-  deform::updateVertexNormals(mesh_, around_, stale_vertices_);
   return recomputed;
 }
 

@@ -30,21 +30,8 @@ struct Aabb {
 Aabb boundingBox(const Mesh& mesh);
 
 /// Area-weighted vertex normals from the triangles (replaces mesh.normals). Each vertex sums its
-/// triangles in increasing triangle order (updateVertexNormals gives the same bits).
+/// triangles in increasing triangle order (VertexNormals, deform/vertex_normals.hpp, gives the same bits).
 void computeVertexNormals(Mesh& mesh);
-
-/// The triangles around each vertex, in increasing triangle order (a triangle naming a vertex twice is
-/// listed twice): those of vertex v are triangle[begin[v] .. begin[v + 1]).
-struct VertexTriangles {
-  std::vector<std::size_t> begin;  ///< one more than the vertices
-  std::vector<uint32_t> triangle;  ///< triangle indices
-};
-VertexTriangles vertexTriangles(const Mesh& mesh);
-
-/// Recomputes the normals of `vertices` only (DESIGN.md section 8: only what moved), bit-identical to
-/// what computeVertexNormals gives them; mesh.normals must already hold one normal per position.
-/// `around` is vertexTriangles(mesh) of the same triangles.
-void updateVertexNormals(Mesh& mesh, const VertexTriangles& around, const std::vector<uint32_t>& vertices);
 
 /// Refuses a mesh that cannot be used: no vertices, no triangles, an index out of range, a non-finite
 /// coordinate or zero extent. Throws InputError whose message starts with `source`.

@@ -2,11 +2,12 @@
 // A car's render mesh following its control points through the skin (deform/skin.hpp, idw or mls):
 // weights built once from the rest control points, then per frame only the vertices that a moved
 // control point influences are recomputed (deform::Skin::deformMoved, DESIGN.md section 8), and only
-// the normals of the vertices next to them (deform::updateVertexNormals).
+// the normals of the vertices next to them (deform::VertexNormals).
 #include <vehicle/simulation.hpp>
 
 #include <deform/mesh.hpp>
 #include <deform/skin.hpp>
+#include <deform/vertex_normals.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -37,11 +38,9 @@ class CarSkin {
   deform::Mesh mesh_;
   std::vector<Eigen::Vector3d> last_displacements_m_;
   std::vector<uint8_t> moved_;
-  deform::VertexTriangles around_;          ///< triangles around each vertex, for partial normals
+  deform::VertexNormals normals_;           ///< cached triangle normals, for partial normal updates
   bool normals_computed_ = false;           ///< every normal computed from the triangles at least once
   std::vector<uint8_t> vertex_recomputed_;  ///< scratch: vertices the last update moved
-  std::vector<uint8_t> normal_stale_;       ///< scratch: vertices whose normal the last update changed
-  std::vector<uint32_t> stale_vertices_;    ///< scratch: the same as a list
 };
 
 }  // namespace scenes
