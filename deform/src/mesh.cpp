@@ -17,22 +17,6 @@ Aabb boundingBox(const Mesh& mesh) {
   return box;
 }
 
-void computeVertexNormals(Mesh& mesh) {
-  std::vector<Eigen::Vector3d> sum(mesh.positions_m.size(), Eigen::Vector3d::Zero());
-  for (const auto& t : mesh.triangles) {
-    Eigen::Vector3d a = mesh.positions_m[t[0]].cast<double>();
-    Eigen::Vector3d b = mesh.positions_m[t[1]].cast<double>();
-    Eigen::Vector3d c = mesh.positions_m[t[2]].cast<double>();
-    Eigen::Vector3d area_normal = (b - a).cross(c - a);  // length = twice the area: area weighting
-    for (uint32_t v : t) sum[v] += area_normal;
-  }
-  mesh.normals.resize(mesh.positions_m.size());
-  for (std::size_t i = 0; i < sum.size(); ++i) {
-    double len = sum[i].norm();
-    mesh.normals[i] = len > 0 ? (sum[i] / len).cast<float>() : Eigen::Vector3f(0, 0, 1);
-  }
-}
-
 void checkMesh(const Mesh& mesh, std::string_view source) {
   const std::string where(source);
   if (mesh.positions_m.empty()) throw InputError(where + ": no vertices");

@@ -1,4 +1,4 @@
-// Building the embedding weights (Kenwright 2015, equation 1) and the per-frame deform pass.
+// Building the embedding weights (skin_weights.cpp) and the per-frame deform pass.
 #include <deform/error.hpp>
 #include <deform/skin.hpp>
 
@@ -8,30 +8,28 @@
 #include <optional>
 
 #include <string>
+
 #include "nearest_points.hpp"
+#include "skin_weights.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 namespace deform {
-namespace {
-
-/// Normalised inverse-distance weights for one vertex over the chosen control points.
-/// phi_i = 1/d_i^alpha is evaluated as (d_min/d_i)^alpha, which is 1 for the nearest point and never
-/// overflows, whatever alpha or however close the vertex sits to a control point. A vertex on a control
-/// point (d_min = 0) takes that point alone (shared equally among coincident points).
-void normalisedWeights(const double* distance_m, std::size_t count, double alpha, double* weight) {
-  double d_min = *std::min_element(distance_m, distance_m + count);
-  double sum = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    weight[k] = d_min > 0 ? std::pow(d_min / distance_m[k], alpha) : (distance_m[k] == 0 ? 1.0 : 0.0);
-    sum += weight[k];
-  }
-  for (std::size_t k = 0; k < count; ++k) weight[k] /= sum;  // sum >= 1: the nearest contributes 1
+const char* skinMethodName(SkinMethod method) {
+  return method == SkinMethod::mls ? "mls" : "idw";
 }
 
-}  // namespace
+bool parseSkinMethod(const std::string& name, SkinMethod& method) {
+  if (name == "idw")
+    method = SkinMethod::idw;
+  else if (name == "mls")
+    method = SkinMethod::mls;
+  else
+    return false;
+  return true;
+}
 
 Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
                  const std::vector<Eigen::Vector3d>& control_rest_m, const SkinOptions& options) {
@@ -48,6 +46,7 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   skin.vertex_count_ = vertices_m.size();
   skin.control_count_ = n;
   skin.alpha_ = options.alpha;
+  skin.method_ = options.method;
   skin.influences_ = options.k_nearest == 0 ? n : std::min(options.k_nearest, n);
   skin.wide_indices_ = n > 65536;
   const std::size_t slots = skin.vertex_count_ * skin.influences_;
@@ -60,8 +59,9 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   std::optional<detail::PointKdTree> tree;
   if (use_tree) tree.emplace(control_rest_m);
   parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<detail::RankedPoint> ranked;
+    std::vector<detail::RankedPoint> ranked, candidates;
     std::vector<double> distance(K), weight(K);
+    std::vector<Eigen::Vector3d> point(K);
     std::vector<uint32_t> chosen(K);
     for (std::size_t j = begin; j < end; ++j) {
       const Eigen::Vector3d v = vertices_m[j].cast<double>();
@@ -74,13 +74,34 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
           std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(K - 1), ranked.end());
         ranked.resize(K);
       }
+      // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
+      // among the nearest few dozen, then (a large flat side of the hull) among all.
+      if (options.method == SkinMethod::mls && K < n && detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
+        const std::vector<detail::RankedPoint> nearest = ranked;
+        bool widened = false;
+        if (use_tree) {
+          tree->nearest(v, std::min(n, 4 * K + 16), candidates);
+          widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
+        }
+        if (!widened) {
+          ranked = nearest;
+          candidates.clear();
+          for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+          std::sort(candidates.begin(), candidates.end());
+          detail::widenSpan(v, control_rest_m, ranked, candidates);
+        }
+      }
       // Slots in index order: deterministic, and the displacement reads walk forward through memory.
       std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
       for (std::size_t k = 0; k < K; ++k) {
         chosen[k] = ranked[k].index;
         distance[k] = std::sqrt(ranked[k].distance2_m2);
+        point[k] = control_rest_m[chosen[k]];
       }
-      normalisedWeights(distance.data(), K, options.alpha, weight.data());
+      if (options.method == SkinMethod::mls)
+        detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha, weight.data());
+      else
+        detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
       for (std::size_t k = 0; k < K; ++k) {
         const std::size_t s = j * K + k;
         if (skin.wide_indices_)
@@ -139,9 +160,11 @@ void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displace
 }
 
 std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
-                              const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m,
-                              unsigned threads) const {
-  std::vector<uint8_t> dirty(vertex_count_, 0);
+                              const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m, unsigned threads,
+                              std::vector<uint8_t>* recomputed_flags) const {
+  std::vector<uint8_t> local;
+  std::vector<uint8_t>& dirty = recomputed_flags ? *recomputed_flags : local;
+  dirty.assign(vertex_count_, 0);
   std::size_t influenced = 0;
   for (std::size_t i = 0; i < control_count_ && i < moved.size(); ++i) {
     if (!moved[i]) continue;

@@ -28,8 +28,12 @@ void runEmbed(const EmbedFlags& flags) {
               100.0 * r["bandwidth_fraction"].get<double>(), r["copy_gb_per_s"].get<double>());
   std::printf("  AoS baseline    %8.3f ms  (%.1fx slower)\n", r["baseline_aos_ms"].get<double>(),
               r["speedup_vs_aos"].get<double>());
-  std::printf("  skin build      %8.1f ms, %.1f MB\n", r["skin_build_ms"].get<double>(),
+  std::printf("  skin build      %8.1f ms, %.1f MB (idw)\n", r["skin_build_ms"].get<double>(),
               static_cast<double>(r["skin_bytes"].get<std::size_t>()) / 1e6);
+  const auto& mls = r["mls"];
+  std::printf("  mls skin        %8.3f ms median (%.0f vertices/ms), build %.1f ms\n",
+              mls["ms"].get<double>(), mls["vertices_per_ms"].get<double>(),
+              mls["skin_build_ms"].get<double>());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// `sandbox export SCENE --at T --out FILE.glb|.obj`: the damaged car at time T as a mesh (assimp's
-// exporter), in the vehicle frame, wheels at their hubs, to open in any 3D tool.
+// `sandbox export SCENE --at T --out FILE.glb|.obj [--frame vehicle|world]`: the damaged car at time T as a
+// mesh (assimp's exporter), wheels at their rest hubs, to open in any 3D tool: in the vehicle frame, or
+// the same mesh placed rigidly at the car's world pose at T (to put beside the scene's obstacles).
 #include <deform/mesh_export.hpp>
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
@@ -24,6 +25,9 @@ void exportScene(const ExportOptions& options) {
   if (extension != ".glb" && extension != ".obj") {
     throw deform::InputError("--out: " + options.out + ": give a .glb or .obj file");
   }
+  if (options.frame != "vehicle" && options.frame != "world") {
+    throw deform::InputError("--frame: must be vehicle or world (got '" + options.frame + "')");
+  }
   const fs::path parent = fs::path(options.out).parent_path();
   if (!parent.empty() && !fs::is_directory(parent)) {
     throw deform::InputError("--out: folder " + parent.string() + " does not exist");
@@ -46,12 +50,21 @@ void exportScene(const ExportOptions& options) {
     for (Eigen::Vector3f& p : tyre.positions_m) p += wheel.centre_m.cast<float>();
     deform::appendMesh(mesh, tyre);
   }
+  const vehicle::Pose pose = run.simulation().world().car(run.carId(options.car)).vehiclePose();
+  if (options.frame == "world") {
+    for (Eigen::Vector3f& p : mesh.positions_m) p = pose.toWorld(p.cast<double>()).cast<float>();
+  }
   deform::computeVertexNormals(mesh);
   deform::exportMesh(mesh, options.out);
-  std::printf("wrote %s: %s at t = %.3f s (%llu steps), %zu vertices, %zu triangles; state hash %s\n",
-              options.out.c_str(), scene.vehicles[options.car].name.c_str(), run.time_s(),
-              static_cast<unsigned long long>(run.steps()), mesh.positions_m.size(), mesh.triangles.size(),
-              scenes::hashHex(run.simulation().stateHash()).c_str());
+  std::printf(
+      "wrote %s: %s at t = %.3f s (%llu steps), %zu vertices, %zu triangles, %s frame; state hash %s\n",
+      options.out.c_str(), scene.vehicles[options.car].name.c_str(), run.time_s(),
+      static_cast<unsigned long long>(run.steps()), mesh.positions_m.size(), mesh.triangles.size(),
+      options.frame.c_str(), scenes::hashHex(run.simulation().stateHash()).c_str());
+  const Eigen::Quaterniond& q = pose.orientation;
+  std::printf(
+      "vehicle pose: origin (%.6f, %.6f, %.6f) m, orientation (w, x, y, z) (%.9f, %.9f, %.9f, %.9f)\n",
+      pose.position_m.x(), pose.position_m.y(), pose.position_m.z(), q.w(), q.x(), q.y(), q.z());
 }
 
 void registerExportCommand(CLI::App& app) {
@@ -62,6 +75,9 @@ void registerExportCommand(CLI::App& app) {
   cmd->add_option("--out", options->out, "Mesh file to write: .glb (binary glTF, Y up) or .obj (Z up)")
       ->required();
   cmd->add_option("--car", options->car, "Which car of the scene (0 = the first)")->capture_default_str();
+  cmd->add_option("--frame", options->frame,
+                  "vehicle: the car's own frame; world: placed at the car's pose at --at")
+      ->capture_default_str();
   cmd->add_option("--set", options->sets,
                   "Override a scene key: --set vehicle.start.speed_kmh=5 (repeatable)")
       ->expected(1)

@@ -54,7 +54,7 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : rest) points.push_back(p.cast<double>());
   const deform::ControlMesh control = deform::buildControlMesh(points, o.control_points, "builtin:sedan");
-  auto build_start = Clock::now();
+  Clock::time_point build_start = Clock::now();
   const deform::Skin skin = deform::Skin::build(rest, control.points_m, {o.alpha, o.k, threads});
   const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - build_start).count();
 
@@ -70,7 +70,8 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   // Streaming copy, same threads: the bandwidth bound. Source and destination of 128 MB each at least,
   // four times a large last-level cache, so the copy runs from memory as the pass does.
   const std::size_t bytes_per_vertex = skin.bytesPerVertex();
-  const std::size_t copy_floats = std::max<std::size_t>(rest.size() * bytes_per_vertex / 8, std::size_t{32} << 20);
+  const std::size_t copy_floats =
+      std::max<std::size_t>(rest.size() * bytes_per_vertex / 8, std::size_t{32} << 20);
   std::vector<float> src(copy_floats, 1.0f), dst(copy_floats, 0.0f);
   const double copy_ms = medianMs(o.repetitions, [&] {
     deform::parallelFor(copy_floats, threads, [&](std::size_t b, std::size_t e) {
@@ -100,6 +101,14 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   for (std::size_t j = 0; j < out.size(); ++j)
     disagreement_m = std::max(disagreement_m, static_cast<double>((out[j] - out_aos[j]).norm()));
 
+  // The same pass over affine moving-least-squares weights (deform/skin.hpp, SkinMethod::mls).
+  build_start = Clock::now();
+  const deform::Skin mls =
+      deform::Skin::build(rest, control.points_m, {o.alpha, o.k, threads, deform::SkinMethod::mls});
+  const double mls_build_ms = std::chrono::duration<double, std::milli>(Clock::now() - build_start).count();
+  const double mls_ms =
+      medianMs(o.repetitions, [&] { mls.deform(rest.data(), displacement.data(), out.data(), threads); });
+
   const double pass_bytes_per_ms = static_cast<double>(bytes_per_vertex * rest.size()) / ms;
   nlohmann::ordered_json r;
   r["vertices"] = rest.size();
@@ -119,6 +128,9 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   r["aos_max_difference_m"] = disagreement_m;
   r["skin_build_ms"] = build_ms;
   r["skin_bytes"] = skin.memoryBytes();
+  r["mls"] = {{"skin_build_ms", mls_build_ms},
+              {"ms", mls_ms},
+              {"vertices_per_ms", static_cast<double>(rest.size()) / mls_ms}};
   return r;
 }
 

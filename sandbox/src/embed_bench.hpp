@@ -17,7 +17,9 @@ struct EmbedBenchOptions {
 };
 
 /// Runs the benchmark; the JSON holds `ms` (median), `vertices_per_ms`, `bytes_per_vertex`,
-/// `bandwidth_fraction`, `copy_gb_per_s`, `baseline_aos_ms`, `speedup_vs_aos` and the set-up.
+/// `bandwidth_fraction`, `copy_gb_per_s`, `baseline_aos_ms`, `speedup_vs_aos`, `skin_build_ms` and the
+/// set-up, all for the idw skin, and `mls` {`skin_build_ms`, `ms`, `vertices_per_ms`}: the same pass over
+/// moving-least-squares weights (same layout, so the same cost; only the build differs).
 nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& options);
 
 }  // namespace sandbox

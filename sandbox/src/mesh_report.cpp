@@ -2,6 +2,7 @@
 
 #include <deform/control_mesh.hpp>
 #include <deform/masses.hpp>
+#include <deform/skin_checks.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -56,6 +57,12 @@ nlohmann::ordered_json meshReport(const deform::VehicleModel& model, const MeshR
     translation_error = std::max(
         translation_error, (moved[j].cast<double>() - body.positions_m[j].cast<double>() - shift_m).norm());
 
+  // Linear precision: the control points moved by a crash-sized affine map, against the map itself.
+  const deform::AffineMap affine = deform::crashSizedAffineMap(0.5 * (box.min_m + box.max_m));
+  const double affine_error = deform::affineReproductionErrorMax(skin, body.positions_m, control.points_m,
+                                                                 affine, options.skin.threads);
+  const deform::SkinWeightSpread spread = deform::skinWeightSpread(skin);
+
   const auto [lightest, heaviest] =
       std::minmax_element(masses.point_mass_kg.begin(), masses.point_mass_kg.end());
   nlohmann::ordered_json report;
@@ -84,12 +91,17 @@ nlohmann::ordered_json meshReport(const deform::VehicleModel& model, const MeshR
                     {"point_min_kg", *lightest},
                     {"point_max_kg", *heaviest},
                     {"sum_error_kg", masses.total_kg() - options.vehicle_mass_kg}};
+  report["skin_method"] = deform::skinMethodName(skin.method());
   report["alpha"] = skin.alpha();
   report["k"] = skin.influences();
   report["dense"] = options.skin.k_nearest == 0;
   report["skin_bytes"] = skin.memoryBytes();
   report["weights_sum_max_error"] = sum_error;
   report["translation_error_max_m"] = translation_error;
+  report["affine_reproduction_error_max_m"] = affine_error;
+  report["weight_abs_max"] = spread.largest_abs_weight;
+  report["weight_min"] = spread.smallest_weight;
+  report["weights_negative_fraction"] = spread.negative_fraction;
   report["build_ms"] = {{"control_mesh", control_ms}, {"skin", skin_ms}};
   return report;
 }
@@ -130,14 +142,23 @@ std::string formatMeshReport(const nlohmann::ordered_json& r) {
                 m["vehicle_kg"].get<double>(), m["core_kg"].get<double>(), m["points_total_kg"].get<double>(),
                 m["point_min_kg"].get<double>(), m["point_max_kg"].get<double>());
   out << line;
-  std::snprintf(line, sizeof line, "embedding          alpha %.2f, %s %zu, %.1f MB of weights\n",
-                r["alpha"].get<double>(),
+  std::snprintf(line, sizeof line, "embedding          %s, alpha %.2f, %s %zu, %.1f MB of weights\n",
+                r["skin_method"].get<std::string>().c_str(), r["alpha"].get<double>(),
                 r["dense"].get<bool>() ? "dense over" : "K =", r["k"].get<std::size_t>(),
                 static_cast<double>(r["skin_bytes"].get<std::size_t>()) / 1e6);
   out << line;
   std::snprintf(line, sizeof line,
                 "checks             max |sum phi - 1| = %.2e, max translation error = %.2e m\n",
                 r["weights_sum_max_error"].get<double>(), r["translation_error_max_m"].get<double>());
+  out << line;
+  std::snprintf(
+      line, sizeof line,
+      "                   max affine error = %.2e m (crash-sized rotation, stretch, shear, shift)\n",
+      r["affine_reproduction_error_max_m"].get<double>());
+  out << line;
+  std::snprintf(line, sizeof line, "weights            max |w| = %.3f, min w = %.3f, %.1f %% negative\n",
+                r["weight_abs_max"].get<double>(), r["weight_min"].get<double>(),
+                100.0 * r["weights_negative_fraction"].get<double>());
   out << line;
   std::snprintf(line, sizeof line, "build [ms]         control mesh %.1f, skin %.1f\n",
                 r["build_ms"]["control_mesh"].get<double>(), r["build_ms"]["skin"].get<double>());

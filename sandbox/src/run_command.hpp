@@ -39,9 +39,11 @@ struct ExportOptions {
   std::string out;      ///< .glb or .obj
   std::size_t car = 0;  ///< which car
   std::vector<std::string> sets;
+  std::string frame = "vehicle";  ///< "vehicle" (the car's own frame) or "world" (placed at its pose)
 };
 
-/// Plays the scene headless up to at_s and writes car `car`'s damaged body (and wheels) to `out`.
+/// Plays the scene headless up to at_s and writes car `car`'s damaged body (and wheels) to `out`, in the
+/// vehicle frame or, with frame "world", moved rigidly to the car's pose at that time.
 void exportScene(const ExportOptions& options);
 
 }  // namespace sandbox

@@ -123,7 +123,7 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
     if (!car.hub_rest_m.empty()) {
       const vehicle::DeformationSettings& d = simulation.deformationSettings(id);
       car.hub_skin = deform::Skin::build(car.hub_rest_m, simulation.controlRestPoints(id),
-                                         deform::SkinOptions{d.alpha, d.k_nearest, 1});
+                                         deform::SkinOptions{d.alpha, d.k_nearest, 1, d.skin_method});
     }
     const double diagonal = deform::boundingBox(run.model(i).body).diagonal_m();
     car.full_scale_m =

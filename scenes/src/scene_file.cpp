@@ -105,6 +105,9 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.alpha = object->number("alpha", s.alpha, 0.5, 16);
     s.k_nearest =
         static_cast<std::size_t>(object->integer("k_nearest", static_cast<long long>(s.k_nearest), 0, 64));
+    const std::string skin_method =
+        object->choice("skin_method", std::string(deform::skinMethodName(s.skin_method)), {"idw", "mls"});
+    deform::parseSkinMethod(skin_method, s.skin_method);
     s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
     s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
     s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "render/video_writer.hpp"
@@ -236,6 +237,54 @@ TEST_CASE("a run refused for its mesh leaves an earlier run's files alone", "[ru
   CHECK_THROWS_WITH(sandbox::runScene(options), Catch::Contains("flat.obj"));
   CHECK(fs::exists(dir / "out" / "video.mp4"));
   CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
+}
+
+namespace {
+
+/// The vertex lines ("v x y z") of an OBJ file, in order.
+std::vector<Eigen::Vector3d> objVertices(const fs::path& path) {
+  std::vector<Eigen::Vector3d> vertices;
+  std::ifstream in(path);
+  std::string tag;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    Eigen::Vector3d v;
+    if (fields >> tag && tag == "v" && fields >> v.x() >> v.y() >> v.z()) vertices.push_back(v);
+  }
+  return vertices;
+}
+
+}  // namespace
+
+TEST_CASE("sandbox export --frame world: the vehicle-frame mesh moved to the car's pose", "[run]") {
+  const fs::path dir = freshDir("sandbox_export_frame");
+  sandbox::ExportOptions options;
+  options.scene = "wall_crash";
+  options.at_s = 0.6;
+  options.out = (dir / "vehicle.obj").string();
+  sandbox::exportScene(options);
+  options.out = (dir / "world.obj").string();
+  options.frame = "world";
+  sandbox::exportScene(options);
+
+  // The pose the car has at that time (the run is deterministic).
+  scenes::SceneRun run(scenes::loadScene("wall_crash"));
+  run.stepUntil(0.6);
+  const vehicle::Pose pose = run.simulation().world().car(run.carId(0)).vehiclePose();
+  REQUIRE(pose.position_m.norm() > 1.0);  // moved away from the origin: the test can tell the frames apart
+
+  const auto local = objVertices(dir / "vehicle.obj");
+  const auto world = objVertices(dir / "world.obj");
+  REQUIRE(local.size() > 20000);
+  REQUIRE(world.size() == local.size());
+  double worst_m = 0;
+  for (std::size_t i = 0; i < local.size(); ++i)
+    worst_m = std::max(worst_m, (world[i] - pose.toWorld(local[i])).norm());
+  CHECK(worst_m < 1e-4);  // float positions, written as text
+
+  options.frame = "road";
+  CHECK_THROWS_WITH(sandbox::exportScene(options), Catch::Contains("--frame"));
+  fs::remove_all(dir);
 }
 
 TEST_CASE("sandbox export writes the damaged car as GLB and OBJ that read back", "[run]") {

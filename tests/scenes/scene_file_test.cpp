@@ -256,3 +256,20 @@ TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or th
   bad["vehicle"]["deformation"]["backstop"] = "airbag";
   CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.backstop"));
 }
+
+TEST_CASE("vehicle.deformation.skin_method takes idw or mls and refuses anything else", "[scenes]") {
+  json doc = minimalScene();
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);  // the paper's, the default
+  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.skin_method=mls"));
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::mls);
+  doc["vehicle"]["deformation"]["skin_method"] = "idw";
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);
+  doc["vehicle"]["deformation"]["skin_method"] = "rbf";
+  CHECK_THAT(refusal(doc),
+             Catch::Contains("test.json: vehicle.deformation.skin_method: unknown value 'rbf'"));
+  doc["vehicle"]["deformation"]["skin_method"] = 2;
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.skin_method"));
+}

@@ -29,7 +29,8 @@ struct Aabb {
 
 Aabb boundingBox(const Mesh& mesh);
 
-/// Area-weighted vertex normals from the triangles (replaces mesh.normals).
+/// Area-weighted vertex normals from the triangles (replaces mesh.normals). Each vertex sums its
+/// triangles in increasing triangle order (VertexNormals, deform/vertex_normals.hpp, gives the same bits).
 void computeVertexNormals(Mesh& mesh);
 
 /// Refuses a mesh that cannot be used: no vertices, no triangles, an index out of range, a non-finite

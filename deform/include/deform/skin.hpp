@@ -1,20 +1,37 @@
 #pragma once
-// The embedding of the render mesh in the control points (Kenwright 2015, equation 1):
-//   phi_ij = 1 / |c_i0 - v_j|^alpha, normalised so that sum_i phi_ij = 1,
-//   v'_j   = v_j + sum_i phi_ij (c_i - c_i0).
-// Weights are computed once ("precompute, then solve"); the per-frame pass only reads them.
+// The embedding of the render mesh in the control points: v'_j = v_j + sum_i w_ij (c_i - c_i0), the weights
+// over the K nearest control points computed once ("precompute, then solve"); the per-frame pass only
+// reads them. Two choices of weights (SkinMethod):
+//   idw: phi_ij = 1 / |c_i0 - v_j|^alpha normalised so that sum_i phi_ij = 1 (Kenwright 2015, equation 1):
+//        reproduces a translation of the control points, not a rotation, stretch or shear;
+//   mls: moving least squares with an affine fit, the same inverse distances as its weight (Schaefer,
+//        McPhail & Warren 2006, affine case): sum_i w_ij = 1 and sum_i w_ij c_i0 = v_j, so any affine
+//        motion of the control points moves the vertices by that same map (linear precision).
 #include <deform/parallel.hpp>
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace deform {
 
+/// How the weights of a vertex are chosen from its K nearest control points.
+enum class SkinMethod : uint8_t {
+  idw,  ///< normalised inverse distance (Kenwright 2015): translations only; weights in [0, 1]
+  mls,  ///< moving least squares, affine (Schaefer et al. 2006): affine maps exact; weights may be < 0
+};
+
+/// "idw" or "mls"; the name of a method.
+const char* skinMethodName(SkinMethod method);
+/// The method named `name` ("idw" or "mls"), or false when there is none.
+bool parseSkinMethod(const std::string& name, SkinMethod& method);
+
 struct SkinOptions {
-  double alpha = 3.5;         ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
-  std::size_t k_nearest = 8;  ///< influences per vertex; 0 means dense (every control point)
-  unsigned threads = 0;       ///< worker threads for build and deform; 0 = hardware concurrency
+  double alpha = 3.5;                   ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
+  std::size_t k_nearest = 8;            ///< influences per vertex; 0 means dense (every control point)
+  unsigned threads = 0;                 ///< worker threads for build and deform; 0 = hardware concurrency
+  SkinMethod method = SkinMethod::idw;  ///< how the weights are chosen (idw: the paper's)
 };
 
 /// Weights of every render-mesh vertex: `influences()` slots per vertex, vertex-major, each slot a
@@ -29,6 +46,7 @@ class Skin {
   std::size_t controlPointCount() const { return control_count_; }
   std::size_t influences() const { return influences_; }
   double alpha() const { return alpha_; }
+  SkinMethod method() const { return method_; }
   /// Control point of slot k of vertex j (0 <= k < influences()).
   uint32_t slotIndex(std::size_t j, std::size_t k) const {
     const std::size_t s = j * influences_ + k;
@@ -43,7 +61,7 @@ class Skin {
   /// Bytes one deform pass reads and writes per vertex (rest position, slots, output).
   std::size_t bytesPerVertex() const;
 
-  /// v'_j = v_j + sum_i phi_ij d_i for every vertex, where d_i = c_i - c_i0 are the control-point
+  /// v'_j = v_j + sum_i w_ij d_i for every vertex, where d_i = c_i - c_i0 are the control-point
   /// displacements [m] (controlPointCount() of them). Same result for any thread count.
   void deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m, Eigen::Vector3f* out_m,
               unsigned threads = 0) const;
@@ -51,10 +69,11 @@ class Skin {
   /// Partial update (DESIGN.md section 8: only what moved is recomputed): re-deforms only the vertices
   /// that a control point flagged in `moved` (one flag per control point) influences, and leaves every
   /// other vertex of `out_m` as it is. Equal to a full deform() when `out_m` held the previous result and
-  /// `moved` flags every point whose displacement changed since. Returns the vertices recomputed.
+  /// `moved` flags every point whose displacement changed since. Returns the vertices recomputed; when
+  /// `recomputed` is given it receives one flag per vertex, 1 for those recomputed.
   std::size_t deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
-                          const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m,
-                          unsigned threads = 0) const;
+                          const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m, unsigned threads = 0,
+                          std::vector<uint8_t>* recomputed = nullptr) const;
 
   /// Same pass restricted to vertices [begin, end); displacements packed as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m, Eigen::Vector3f* out_m,
@@ -65,10 +84,11 @@ class Skin {
   std::size_t control_count_ = 0;
   std::size_t influences_ = 0;
   double alpha_ = 0;
+  SkinMethod method_ = SkinMethod::idw;
   bool wide_indices_ = false;        ///< more than 65,536 control points: 32-bit indices
   std::vector<uint16_t> indices16_;  ///< slot indices, vertex-major (narrow form; halves the traffic)
   std::vector<uint32_t> indices32_;  ///< slot indices, vertex-major (wide form)
-  std::vector<float> weights_;       ///< slot weights, vertex-major; each vertex's sum is 1
+  std::vector<float> weights_;       ///< slot weights, vertex-major; each vertex's sum is 1 (mls: some < 0)
   /// Reverse index for partial updates: the vertices control point i influences are
   /// influenced_vertices_[influenced_begin_[i] .. influenced_begin_[i + 1]).
   std::vector<std::size_t> influenced_begin_;

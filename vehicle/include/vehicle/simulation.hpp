@@ -25,6 +25,7 @@
 #include <deform/control_mesh.hpp>
 #include <deform/deformable_body.hpp>
 #include <deform/material.hpp>
+#include <deform/skin.hpp>
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -50,8 +51,10 @@ struct DeformationSettings {
   std::size_t control_points = 60;  ///< control points of the deformable body (4 .. 5000) [-]
   double alpha = 3.5;               ///< skin: inverse-distance exponent for the render mesh [-]
   std::size_t k_nearest = 8;        ///< skin: control points per render vertex (0 = dense) [-]
-  int substeps = 4;                 ///< deform substeps per physics step (>= 1) [-]
-  int iterations = 2;               ///< Gauss-Seidel sweeps per substep (>= 1) [-]
+  /// skin: how the render vertices' weights are chosen (idw: the paper's; mls: affine maps exact).
+  deform::SkinMethod skin_method = deform::SkinMethod::idw;
+  int substeps = 4;    ///< deform substeps per physics step (>= 1) [-]
+  int iterations = 2;  ///< Gauss-Seidel sweeps per substep (>= 1) [-]
   /// Visual constraint: no control point moves further than this from its rest position [m].
   double max_deviation_m = 1.0;
   /// The body's material (crush strength, shell membrane and bending, yield, hardening).

@@ -1,0 +1,39 @@
+#pragma once
+// The weights of one render vertex over its chosen control points (deform/skin.hpp): the inverse-distance
+// weights of Kenwright 2015 and the affine moving-least-squares weights of Schaefer et al. 2006.
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "nearest_points.hpp"
+
+namespace deform::detail {
+
+/// Normalised inverse-distance weights (Kenwright 2015, equation 1) from the distances [m] of the vertex to
+/// `count` control points; they sum to 1. A vertex on a control point takes that point alone (shared
+/// equally among coincident points).
+void inverseDistanceWeights(const double* distance_m, std::size_t count, double alpha, double* weight);
+
+/// Affine moving-least-squares weights (Schaefer, McPhail & Warren 2006, section 2.1) of vertex `v_m` over
+/// the control points `point_m[0 .. count)` at distances `distance_m`, with the inverse-distance weights
+/// as the least-squares weight: sum_k w_k = 1 and sum_k w_k p_k = v in every direction the points span.
+/// Directions the points do not span (coplanar, collinear, fewer than four points) are dropped from the
+/// fit: the weights there are those of the weighted centroid. Finite for any input; a vertex on a control
+/// point takes that point alone.
+void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
+                               const double* distance_m, std::size_t count, double alpha, double* weight);
+
+/// Whether vertex `v_m` lies off the plane (or line) of the `chosen` control points by more than three
+/// of their standard deviations across it: the affine fit over them then cannot reach it (the points of
+/// a flat side of the hull, a vertex inside the car).
+bool offsetOutOfSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
+                     const std::vector<RankedPoint>& chosen);
+
+/// While offsetOutOfSpan (at most twice: a line needs two), swaps the farthest chosen point for the
+/// nearest of `candidates` (nearest first) lying off their plane by at least half the vertex's offset,
+/// so the fit spans the vertex with moderate weights; a swap that leaves the points thinner is undone.
+/// Returns false when the candidates held no such point (`chosen` then partly widened).
+bool widenSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
+               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates);
+
+}  // namespace deform::detail

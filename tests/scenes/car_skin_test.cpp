@@ -1,0 +1,68 @@
+// The car's render mesh updates only what moved: positions and normals bit-identical to a full deform
+// and a full normal recompute, for random subsets of moved control points, with either skin method.
+#include <catch2/catch.hpp>
+
+#include <scenes/car_skin.hpp>
+
+#include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
+
+#include <cstdint>
+
+TEST_CASE("partial skin and normal updates equal a full recompute bit for bit", "[car_skin]") {
+  const deform::VehicleModel car = deform::makeSedan(8000);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
+  const std::vector<Eigen::Vector3d> control = deform::buildControlMesh(points, 60).points_m;
+  deform::Mesh body = car.body;
+  body.normals.clear();  // normals from the triangles from the start
+
+  for (deform::SkinMethod method : {deform::SkinMethod::idw, deform::SkinMethod::mls}) {
+    CAPTURE(deform::skinMethodName(method));
+    vehicle::DeformationSettings settings;
+    settings.skin_method = method;
+    scenes::CarSkin skin(body, control, settings);
+    CHECK(skin.skin().method() == method);
+
+    std::vector<Eigen::Vector3d> displacement(control.size(), Eigen::Vector3d::Zero());
+    uint64_t seed = 7;
+    auto next = [&seed] {  // fixed LCG, uniform in [0, 1)
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(seed >> 11) / 9007199254740992.0;
+    };
+    std::size_t partial_updates = 0;
+    for (int frame = 0; frame < 12; ++frame) {
+      // A few points (a dent) most frames, many on some.
+      const double share = frame % 4 == 3 ? 0.5 : 0.05;
+      for (auto& d : displacement)
+        if (next() < share) d += 0.05 * Eigen::Vector3d(next() - 0.5, next() - 0.5, next() - 0.5);
+      const std::size_t recomputed = skin.update(displacement);
+      partial_updates += recomputed > 0 && recomputed < body.positions_m.size();
+
+      deform::Mesh full = body;
+      skin.skin().deform(body.positions_m.data(), displacement.data(), full.positions_m.data());
+      deform::computeVertexNormals(full);
+      REQUIRE(skin.mesh().positions_m == full.positions_m);
+      REQUIRE(skin.mesh().normals == full.normals);
+    }
+    CHECK(partial_updates > 4);  // the partial path was exercised, not only full recomputes
+  }
+}
+
+TEST_CASE("normals the body came with are kept until something moves, then all recomputed", "[car_skin]") {
+  const deform::VehicleModel car = deform::makeSedan(3000);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
+  const std::vector<Eigen::Vector3d> control = deform::buildControlMesh(points, 30).points_m;
+  deform::Mesh body = car.body;
+  body.normals.assign(body.positions_m.size(), Eigen::Vector3f(1, 0, 0));  // the file's own normals
+  scenes::CarSkin skin(body, control, vehicle::DeformationSettings{});
+  CHECK(skin.mesh().normals == body.normals);
+  std::vector<Eigen::Vector3d> displacement(control.size(), Eigen::Vector3d::Zero());
+  displacement[3] = {0.02, 0, 0};
+  skin.update(displacement);
+  deform::Mesh full = body;
+  skin.skin().deform(body.positions_m.data(), displacement.data(), full.positions_m.data());
+  deform::computeVertexNormals(full);
+  CHECK(skin.mesh().normals == full.normals);
+}
