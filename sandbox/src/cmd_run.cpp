@@ -182,8 +182,8 @@ RunResult runScene(const RunOptions& options) {
   scenes::writeFileAtomically((out / "timeline.csv").string(), scenes::timelineCsv(columns, rows));
   scenes::writeFileAtomically((out / "summary.json").string(), result.summary.dump(2) + "\n");
   if (run.diverged()) {
-    throw std::runtime_error(scene.name + ": the run diverged (non-finite or huge values); see " +
-                             (out / "summary.json").string());
+    throw std::runtime_error(scene.name + ": the run diverged (a non-finite value or one beyond 1e10): " +
+                             run.divergence() + "; see " + (out / "summary.json").string());
   }
   return result;
 }

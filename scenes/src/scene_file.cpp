@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "json_reader.hpp"
@@ -396,6 +397,56 @@ std::vector<std::string> shippedSceneNames() {
   return names;
 }
 
+/// json::parse, but a key given twice in one object is refused, naming the file and the key's path (the
+/// standard leaves duplicates undefined and nlohmann keeps the last silently).
+json parseRefusingDuplicates(const std::string& text, const std::string& source) {
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;
+    std::set<std::string> keys;
+    std::string key;
+  };
+  std::vector<Frame> frames;
+  auto pathOf = [&frames](const std::string& last) {
+    std::string path;
+    for (std::size_t i = 0; i + 1 < frames.size(); ++i) {
+      const Frame& f = frames[i];
+      path += f.array ? "[" + std::to_string(f.index) + "]" : (path.empty() ? "" : ".") + f.key;
+    }
+    return path + (path.empty() ? "" : ".") + last;
+  };
+  auto childEnded = [&frames] {
+    if (!frames.empty() && frames.back().array) ++frames.back().index;
+  };
+  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames.push_back({});
+        break;
+      case json::parse_event_t::array_start:
+        frames.push_back({true, 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        if (!frames.back().keys.insert(key).second)
+          throw deform::InputError(source + ": " + pathOf(key) + ": key given twice (give each key once)");
+        frames.back().key = key;
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames.pop_back();
+        childEnded();
+        break;
+      case json::parse_event_t::value:
+        childEnded();
+        break;
+    }
+    return true;
+  };
+  return json::parse(text, check);
+}
+
 std::string resolveScenePath(const std::string& name_or_path) {
   if (fs::is_regular_file(name_or_path)) return name_or_path;
   const bool bare_name = name_or_path.find('/') == std::string::npos && !name_or_path.empty();
@@ -448,7 +499,7 @@ SceneConfig loadScene(const std::string& name_or_path, const std::vector<Overrid
   const std::string text = readText(path);
   json document;
   try {
-    document = json::parse(text);
+    document = parseRefusingDuplicates(text, path);
   } catch (const json::parse_error& e) {
     throw deform::InputError(path + ": not valid JSON at " + lineColumn(text, e.byte > 0 ? e.byte - 1 : 0));
   }

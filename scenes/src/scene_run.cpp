@@ -218,6 +218,21 @@ bool SceneRun::diverged() const {
   return false;
 }
 
+std::string SceneRun::divergence() const {
+  std::size_t first = cars_.size();
+  for (std::size_t i = 0; i < cars_.size(); ++i) {
+    const vehicle::CrashMetrics m = simulation_->metrics(cars_[i].id);
+    if (m.diverged &&
+        (first == cars_.size() || m.diverged_at_s < simulation_->metrics(cars_[first].id).diverged_at_s))
+      first = i;
+  }
+  if (first == cars_.size()) return "";
+  const vehicle::CrashMetrics m = simulation_->metrics(cars_[first].id);
+  char when[64];
+  std::snprintf(when, sizeof when, " at t = %.4f s", m.diverged_at_s);
+  return scene_.vehicles[first].name + ": " + m.diverged_what + when;
+}
+
 namespace {
 
 nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
@@ -241,6 +256,7 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
   j["max_penetration_m"] = m.max_penetration_m;
   j["tunnelled"] = m.tunnelled;
   j["diverged"] = m.diverged;
+  if (m.diverged) j["diverged_at"] = {{"time_s", m.diverged_at_s}, {"what", m.diverged_what}};
   j["impacted"] = m.impacted;
   return j;
 }

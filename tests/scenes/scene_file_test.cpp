@@ -130,6 +130,25 @@ TEST_CASE("a scene that is not valid JSON is refused naming file, line and colum
   fs::remove(path);
 }
 
+TEST_CASE("a key given twice is refused naming the file and the key's path", "[scenes]") {
+  const fs::path path = fs::temp_directory_path() / "scenes_test_duplicate.json";
+  const std::string head =
+      R"({"duration_s": 1, "physics_hz": 500, "vehicle": {"mesh": "builtin:sedan?vertices=2000", "mass_kg": 1500, "coupling": "crush")";
+  std::ofstream(path) << head << R"(, "start": {"speed_kmh": 20, "speed_kmh": 30}}})";
+  CHECK_THROWS_WITH(scenes::loadScene(path.string()),
+                    Catch::Contains("scenes_test_duplicate.json: vehicle.start.speed_kmh: key given twice"));
+  std::ofstream(path) << head
+                      << R"(}, "obstacles": [{"type": "wall", "position_m": [5, 0], "size_m": [1, 4, 1]},
+                                                        {"type": "post", "type": "wall"}]})";
+  CHECK_THROWS_WITH(scenes::loadScene(path.string()), Catch::Contains("obstacles[1].type: key given twice"));
+  // The same key in two objects is no duplicate.
+  std::ofstream(path) << head << R"(, "start": {"speed_kmh": 20}}, "obstacles": [
+      {"type": "wall", "position_m": [5, 0], "size_m": [1, 4, 1]},
+      {"type": "wall", "position_m": [9, 0], "size_m": [1, 4, 1]}]})";
+  CHECK(scenes::loadScene(path.string()).obstacles.size() == 2);
+  fs::remove(path);
+}
+
 TEST_CASE("overrides (--set) change any key and are checked as strictly as the file", "[scenes]") {
   json doc = minimalScene();
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.start.speed_kmh=5"));

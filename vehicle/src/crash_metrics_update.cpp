@@ -15,9 +15,14 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
 
   // Divergence (MuJoCo-style): non-finite or beyond 1e10 anywhere.
   auto bad = [](const Eigen::Vector3d& v) { return !v.allFinite() || v.cwiseAbs().maxCoeff() > 1e10; };
-  for (const auto& x : s.positions_m)
-    if (bad(x)) mt.diverged = true;
-  if (bad(car.bodyPose().position_m) || bad(car.velocity_mps())) mt.diverged = true;
+  if (!mt.diverged) {
+    for (std::size_t i = 0; i < s.positions_m.size() && mt.diverged_what.empty(); ++i)
+      if (bad(s.positions_m[i])) mt.diverged_what = "control point " + std::to_string(i);
+    if (mt.diverged_what.empty() && (bad(car.bodyPose().position_m) || bad(car.velocity_mps())))
+      mt.diverged_what = "chassis";
+    mt.diverged = !mt.diverged_what.empty();
+    if (mt.diverged) mt.diverged_at_s = world.time_s();
+  }
 
   if (!mt.impacted && !dc.touching.empty()) {
     // First impact with the first thing touched: velocities before the step, positions now.

@@ -138,7 +138,10 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   // (and the core's travel within the step to its position); the momentum the obstacles gave the points
   // goes back to a free obstacle (a pushed box), at the contact points' centre.
   dc.step_crush_work_J = 0;
-  if (crush) {
+  // A body that diverged (its metrics say so, with where and when) hands ODE nothing: ODE aborts on a NaN.
+  const bool finite = report.core_impulse_Ns.allFinite() && report.core_angular_impulse_Nms.allFinite() &&
+                      report.core_displacement_m.allFinite();
+  if (crush && finite) {
     const double kinetic_before_J = kineticEnergy(car);
     // The moment turns chassis and shell together: the points live in the chassis's frame, so the shell
     // turns with it rigidly and takes its share, I_s I^-1, of the angular momentum.
@@ -154,7 +157,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
       if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
         continue;  // another deformable car takes its share through its own body
       const Eigen::Vector3d impulse = report.contact_impulse_per_obstacle_Ns[k];
-      if (impulse.squaredNorm() > 0)
+      if (impulse.squaredNorm() > 0 && impulse.allFinite())
         world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
     }
   }

@@ -517,6 +517,8 @@ double World::crushAllowance(CarId id) const {
 }
 
 void World::addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m) {
+  if (!force_N.allFinite() || !point_m.allFinite())
+    throw deform::InputError("addForce: the force and its point must be finite (ODE aborts on a NaN)");
   dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
                                                      : impl_->obstacles.at(entity.index).body;
   if (body == nullptr) return;
@@ -526,6 +528,10 @@ void World::addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eig
 
 void World::applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, const Eigen::Vector3d& point_m,
                          const Eigen::Vector3d& angular_impulse_Nms) {
+  if (!impulse_Ns.allFinite() || !point_m.allFinite() || !angular_impulse_Nms.allFinite())
+    throw deform::InputError(
+        "applyImpulse: the impulse, its point and the angular impulse must be finite (ODE "
+        "aborts on a NaN)");
   dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
                                                      : impl_->obstacles.at(entity.index).body;
   if (body == nullptr) return;

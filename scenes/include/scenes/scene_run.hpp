@@ -79,6 +79,8 @@ class SceneRun {
 
   /// A non-finite or huge value in any car or body so far.
   bool diverged() const;
+  /// What diverged first and when, e.g. "sedan: control point 12 at t = 0.532 s"; empty if nothing did.
+  std::string divergence() const;
 
   /// The run's figures: car 0's metrics at the top level (impact_speed_mps, ..., energy, tunnelled,
   /// diverged of any car), every car's under "cars", state_hash (16 hex digits), steps, timing_ms.

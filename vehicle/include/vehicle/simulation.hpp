@@ -30,6 +30,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace vehicle {
@@ -154,7 +155,10 @@ struct CrashMetrics {
       0;                   ///< largest depth of a control point left inside an obstacle after a step [m]
   bool tunnelled = false;  ///< the centre of mass crossed to the far side of something it hit
   bool diverged = false;   ///< a non-finite value or one beyond 1e10 in the car or its body
-  bool impacted = false;   ///< the car has hit something (not the ground)
+  /// When it first diverged [s] and what: "control point N" or "chassis" (empty while it has not).
+  double diverged_at_s = 0;
+  std::string diverged_what;
+  bool impacted = false;  ///< the car has hit something (not the ground)
 };
 
 /// Stage timings of the last step [ms], for the runner's timing_ms.

@@ -165,12 +165,14 @@ class World {
   /// Whether car `id` is in the crush coupling (its hull soft, a backstop rigid).
   bool crushes(CarId id) const;
   /// A force on a car's chassis or a free obstacle at a world point, for the next step only (static
-  /// obstacles and the ground ignore it) [N], [m]. Wakes a sleeping obstacle.
+  /// obstacles and the ground ignore it) [N], [m]. Wakes a sleeping obstacle. Throws deform::InputError for
+  /// a non-finite force or point (ODE would abort).
   void addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m);
 
   /// An impulse on a car's chassis or a free obstacle, now: its velocity changes by impulse / mass and its
   /// angular velocity by I^-1 ((point - centre of mass) x impulse + angular_impulse) (world) [N s], [m],
-  /// [N m s]. Static obstacles and the ground ignore it. Wakes a sleeping obstacle.
+  /// [N m s]. Static obstacles and the ground ignore it. Wakes a sleeping obstacle. Throws
+  /// deform::InputError for a non-finite argument.
   void applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, const Eigen::Vector3d& point_m,
                     const Eigen::Vector3d& angular_impulse_Nms = Eigen::Vector3d::Zero());
   /// Moves a car's chassis by `shift_m` (world) [m], keeping its velocity and orientation.
