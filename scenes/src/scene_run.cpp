@@ -1,5 +1,6 @@
 // Playing a scene: world and cars from the scene, drive scripts, metrics, timeline.
 #include <scenes/scene_run.hpp>
+#include <vehicle/ccd_support.hpp>
 
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
@@ -149,6 +150,35 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
     const std::string where = scene_.source + ": obstacles[" + std::to_string(i) + "]";
     obstacle_ids_.push_back(
         withSource(where, [&] { return addObstacle(simulation_->world(), scene_.obstacles[i], where); }));
+  }
+  refuseStartingOverlaps();
+}
+
+void SceneRun::refuseStartingOverlaps() const {
+  // A car placed inside an obstacle or another car would start crushed (the sedan put in a wall ended 1 m
+  // deformed on top of it). Touching is allowed: 1 cm.
+  constexpr double kTouch_m = 0.01;
+  const vehicle::World& world = simulation_->world();
+  auto refuse = [&](const std::string& a, const std::string& b, double depth_m) {
+    char by[64];
+    std::snprintf(by, sizeof by, " by %.3f m", depth_m);
+    throw deform::InputError(scene_.source + ": " + a + " overlaps " + b + " at the start" + by +
+                             " (move one of them apart)");
+  };
+  for (std::size_t i = 0; i < cars_.size(); ++i) {
+    const vehicle::ObstacleShape car = world.shapeOf({vehicle::EntityRef::Kind::Car, cars_[i].id});
+    const std::string name = vehicleKey(scene_, i) + " (" + scene_.vehicles[i].name + ")";
+    for (std::size_t j = 0; j < obstacle_ids_.size(); ++j) {
+      const double depth_m =
+          vehicle::overlapDepth_m(car, world.shapeOf({vehicle::EntityRef::Kind::Obstacle, obstacle_ids_[j]}));
+      if (depth_m > kTouch_m) refuse(name, "obstacles[" + std::to_string(j) + "]", depth_m);
+    }
+    for (std::size_t k = i + 1; k < cars_.size(); ++k) {
+      const double depth_m =
+          vehicle::overlapDepth_m(car, world.shapeOf({vehicle::EntityRef::Kind::Car, cars_[k].id}));
+      if (depth_m > kTouch_m)
+        refuse(name, vehicleKey(scene_, k) + " (" + scene_.vehicles[k].name + ")", depth_m);
+    }
   }
 }
 

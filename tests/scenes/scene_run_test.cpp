@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <deform/error.hpp>
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -81,4 +82,22 @@ TEST_CASE("the material map acts where its region is: weaker doors let the side 
                                 << strong_doors_m << " m");
   CHECK(sedan_m > 1.1 * uniform_m);  // measured 0.240 against 0.197 m; 0.198 with the doors at 4e5 Pa
   CHECK(strong_doors_m < sedan_m);
+}
+
+TEST_CASE("a car placed inside an obstacle or another car at the start is refused, naming both", "[run]") {
+  // The sedan put into the wall used to start crushed and end 1 m deformed on top of it.
+  const auto refusal = [](const std::string& scene, const std::string& set) {
+    try {
+      scenes::SceneRun run(scenes::loadScene(scene, {scenes::parseOverride(set)}));
+    } catch (const deform::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  CHECK_THAT(refusal("wall_crash", "obstacles[0].position_m=[2.5,0]"),
+             Catch::Contains("wall_crash.json: vehicle (sedan) overlaps obstacles[0] at the start by 0.19"));
+  CHECK_THAT(refusal("car_to_car", "vehicles[1].start.position_m=[2,0]"),
+             Catch::Contains("vehicles[0] (striking) overlaps vehicles[1] (struck)"));
+  // Touching (the wall's near face 5 mm into the bumper, within the 1 cm allowed) is not refused.
+  CHECK(refusal("wall_crash", "obstacles[0].position_m=[2.695,0]") == "(accepted)");
 }

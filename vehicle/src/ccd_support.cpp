@@ -1,6 +1,8 @@
 // libccd callbacks for ObstacleShape and a point-in-shape penetration query (MPR).
 #include <vehicle/ccd_support.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace vehicle {
@@ -60,6 +62,22 @@ bool pointPenetration(const ObstacleShape& shape, const Eigen::Vector3d& point_m
   out_normal = fromCcd(&direction);
   out_depth_m = depth;
   return depth > 0;
+}
+
+double overlapDepth_m(const ObstacleShape& a, const ObstacleShape& b) {
+  if (a.type == ShapeType::HalfSpace || b.type == ShapeType::HalfSpace) return 0;
+  if ((interiorPoint(a) - interiorPoint(b)).norm() > boundingRadius(a) + boundingRadius(b)) return 0;
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccdSupport;
+  ccd.center1 = ccdCentre;
+  ccd.support2 = ccdSupport;
+  ccd.center2 = ccdCentre;
+  ccd.mpr_tolerance = 1e-9;
+  ccd_real_t depth = 0;
+  ccd_vec3_t direction, position;
+  if (ccdMPRPenetration(&a, &b, &ccd, &depth, &direction, &position) != 0) return 0;
+  return std::max(0.0, static_cast<double>(depth));
 }
 
 }  // namespace vehicle

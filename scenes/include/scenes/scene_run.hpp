@@ -101,6 +101,8 @@ class SceneRun {
   SceneConfig scene_;
   /// One simulation step with every car's drive inputs.
   void internalStep();
+  /// Throws deform::InputError naming both when a car overlaps an obstacle or another car at the start.
+  void refuseStartingOverlaps() const;
 
   std::unique_ptr<vehicle::Simulation> simulation_;
   std::vector<Car> cars_;

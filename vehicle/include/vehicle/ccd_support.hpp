@@ -18,4 +18,8 @@ void ccdCentre(const void* obstacle_shape, ccd_vec3_t* out);
 bool pointPenetration(const ObstacleShape& shape, const Eigen::Vector3d& point_m, Eigen::Vector3d& out_normal,
                       double& out_depth_m);
 
+/// How deep two shapes overlap [m] (libccd's MPR penetration depth); 0 when they do not, or when either is
+/// a HalfSpace.
+double overlapDepth_m(const ObstacleShape& a, const ObstacleShape& b);
+
 }  // namespace vehicle
