@@ -4,6 +4,8 @@
 // figures these bounds come from.
 #include <vehicle/simulation.hpp>
 
+#include "crash_cars.hpp"
+
 #include <deform/builtin_meshes.hpp>
 #include <deform/error.hpp>
 
@@ -14,16 +16,10 @@
 #include <numbers>
 
 using namespace vehicle;
+using crash_test::kKmh;
+using crash_test::sedan;
 
 namespace {
-
-constexpr double kKmh = 1 / 3.6;
-
-/// Coarse built-in sedan: only its control mesh matters for the physics.
-const deform::VehicleModel& sedan() {
-  static const deform::VehicleModel model = deform::makeBuiltin("builtin:sedan?vertices=2000");
-  return model;
-}
 
 double frontOf(const Simulation& sim, CarId id) {
   double front = -1e300;

@@ -3,6 +3,8 @@
 // stops it; the old uniform shrink of the hull stays as Backstop::ShrunkHull.
 #include <vehicle/simulation.hpp>
 
+#include "crash_cars.hpp"
+
 #include <deform/builtin_meshes.hpp>
 #include <deform/error.hpp>
 
@@ -12,15 +14,10 @@
 #include <limits>
 
 using namespace vehicle;
+using crash_test::kKmh;
+using crash_test::sedan;
 
 namespace {
-
-constexpr double kKmh = 1 / 3.6;
-
-const deform::VehicleModel& sedan() {
-  static const deform::VehicleModel model = deform::makeBuiltin("builtin:sedan?vertices=2000");
-  return model;
-}
 
 /// The sedan at 100 km/h into a 0.15 m post on its centreline; the largest intrusion and the final
 /// forward speed.

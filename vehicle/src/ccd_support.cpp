@@ -23,6 +23,9 @@ void pointCentre(const void* point, ccd_vec3_t* out) {
   toCcd(*static_cast<const Eigen::Vector3d*>(point), out);
 }
 
+/// libccd's MPR set-up: object 1 an ObstacleShape, object 2 by the given functions.
+ccd_t mprAgainst(ccd_support_fn support2, ccd_center_fn centre2);
+
 }  // namespace
 
 void ccdSupport(const void* obstacle_shape, const ccd_vec3_t* direction, ccd_vec3_t* out) {
@@ -32,6 +35,19 @@ void ccdSupport(const void* obstacle_shape, const ccd_vec3_t* direction, ccd_vec
 void ccdCentre(const void* obstacle_shape, ccd_vec3_t* out) {
   toCcd(interiorPoint(*static_cast<const ObstacleShape*>(obstacle_shape)), out);
 }
+
+namespace {
+ccd_t mprAgainst(ccd_support_fn support2, ccd_center_fn centre2) {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccdSupport;
+  ccd.center1 = ccdCentre;
+  ccd.support2 = support2;
+  ccd.center2 = centre2;
+  ccd.mpr_tolerance = 1e-9;
+  return ccd;
+}
+}  // namespace
 
 bool pointPenetration(const ObstacleShape& shape, const Eigen::Vector3d& point_m, Eigen::Vector3d& out_normal,
                       double& out_depth_m) {
@@ -48,13 +64,7 @@ bool pointPenetration(const ObstacleShape& shape, const Eigen::Vector3d& point_m
     return out_depth_m > 0;
   }
   if ((point_m - interiorPoint(shape)).norm() > boundingRadius(shape)) return false;
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.center1 = ccdCentre;
-  ccd.support2 = pointSupport;
-  ccd.center2 = pointCentre;
-  ccd.mpr_tolerance = 1e-9;
+  ccd_t ccd = mprAgainst(pointSupport, pointCentre);
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   if (ccdMPRPenetration(&shape, &point_m, &ccd, &depth, &direction, &position) != 0) return false;
@@ -67,13 +77,7 @@ bool pointPenetration(const ObstacleShape& shape, const Eigen::Vector3d& point_m
 double overlapDepth_m(const ObstacleShape& a, const ObstacleShape& b) {
   if (a.type == ShapeType::HalfSpace || b.type == ShapeType::HalfSpace) return 0;
   if ((interiorPoint(a) - interiorPoint(b)).norm() > boundingRadius(a) + boundingRadius(b)) return 0;
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.center1 = ccdCentre;
-  ccd.support2 = ccdSupport;
-  ccd.center2 = ccdCentre;
-  ccd.mpr_tolerance = 1e-9;
+  ccd_t ccd = mprAgainst(ccdSupport, ccdCentre);
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   if (ccdMPRPenetration(&a, &b, &ccd, &depth, &direction, &position) != 0) return 0;
