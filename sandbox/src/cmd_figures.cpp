@@ -51,6 +51,9 @@ const PaperFigure kFigures[] = {
      "and "
      "vegetation).",
      figures::minorHitsFigure},
+    // Not the paper's (empty caption): what the skin adds to the picture.
+    {"Wall crash front: idw against mls skin", "", figures::wallCrashSkinsFigure},
+    {"Front profile after the wall crash", "", figures::frontProfileFigure},
 };
 
 void runFigures(const FiguresFlags& flags) {
@@ -63,7 +66,8 @@ void runFigures(const FiguresFlags& flags) {
     const figures::Figure made = f.make(flags.options);
     std::printf("wrote %s/%s\n", flags.options.out_dir.c_str(), made.file.c_str());
     md += "\n## " + std::string(f.title) + "\n\n![" + f.title + "](figures/" + made.file + ")\n\n";
-    md += "**Paper:** " + std::string(f.paper_caption) + "\n\n**Ours:** " + made.caption + "\n";
+    if (*f.paper_caption) md += "**Paper:** " + std::string(f.paper_caption) + "\n\n";
+    md += "**Ours:** " + made.caption + "\n";
   }
   if (!flags.markdown.empty()) {
     std::ofstream(flags.markdown) << md;

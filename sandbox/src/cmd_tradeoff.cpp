@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "plot.hpp"
 #include "table_output.hpp"
+#include "tradeoff/skin_error_report.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 #include <scenes/scene_run.hpp>
@@ -20,6 +21,7 @@ struct TradeoffFlags {
   TradeoffOptions options;
   std::vector<std::string> scenes;
   std::string out_dir = "out/tradeoff";
+  bool skin_only = false;  ///< the skin alone on known fields (tradeoff/skin_error.hpp), no physics
 };
 
 std::string fixed(double value, int decimals) {
@@ -123,6 +125,14 @@ void plotScene(const std::vector<TradeoffRow>& rows, const std::string& scene, c
 }
 
 void runTradeoffCommand(TradeoffFlags& flags) {
+  if (flags.skin_only) {
+    std::filesystem::create_directories(flags.out_dir);
+    const bool quick = flags.options.quick;
+    const auto rows = runSkinError(quick ? SkinErrorOptions::quick() : SkinErrorOptions{});
+    writeSkinErrorReport(rows, flags.out_dir,
+                         std::string("sandbox tradeoff --skin-only") + (quick ? " --quick" : ""));
+    return;
+  }
   if (!flags.scenes.empty()) flags.options.scenes = flags.scenes;
   std::filesystem::create_directories(flags.out_dir);
   const std::vector<TradeoffRow> rows = runTradeoff(flags.options);
@@ -146,6 +156,10 @@ void registerTradeoffCommand(CLI::App& app) {
   cmd->add_option("--out", flags->out_dir, "Folder for tradeoff.csv, tradeoff.md and the plots")
       ->capture_default_str();
   cmd->add_flag("--quick", flags->options.quick, "Two values per knob and a lighter reference (under 2 min)");
+  cmd->add_flag("--skin-only", flags->skin_only,
+                "The skin alone: control points moved by known smooth fields (bend, twist, frontal crush, "
+                "affine), the render mesh against the exact field for N, K, alpha and idw/mls; writes "
+                "skin_error.csv, skin_error.md and plots");
   cmd->callback([flags] { runTradeoffCommand(*flags); });
 }
 

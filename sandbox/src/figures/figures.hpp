@@ -34,4 +34,10 @@ Figure wallCrashFigure(const FigureOptions& options);
 /// Figure "Mesh Deformation": a 900,000-vertex car with 60 control points after minor hits (post_bumps).
 Figure minorHitsFigure(const FigureOptions& options);
 
+/// Not the paper's: wall_crash embedded by the idw and the mls skin side by side (skin_figures.cpp).
+Figure wallCrashSkinsFigure(const FigureOptions& options);
+
+/// Not the paper's: the front profile after wall_crash with each skin, plotted (front_profile.hpp).
+Figure frontProfileFigure(const FigureOptions& options);
+
 }  // namespace sandbox::figures
