@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
+#include <variant>
 
 namespace scenes {
 
@@ -67,6 +69,7 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   } else {
     vertex_recomputed_.assign(mesh_.positions_m.size(), 0);
   }
+  const auto projection_start = std::chrono::steady_clock::now();
   // Back to the skin's position before the test (the skin did not recompute a vertex whose control
   // points stayed put, and its position now is the projected one).
   for (std::size_t k = 0; k < projected_.size(); ++k) {
@@ -84,6 +87,8 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
     candidates_.clear();
     deform::verticesNear(shape, grid_, reach_m, candidates_);
     last_projection_.tested += candidates_.size();
+    if (std::holds_alternative<deform::HalfSpaceShape>(shape))
+      last_projection_.tested_ground += candidates_.size();
     for (const uint32_t v : candidates_) {
       Eigen::Vector3d x = mesh_.positions_m[v].cast<double>();
       if (!deform::projectOutOf(shape, interior_m_, x)) continue;
@@ -98,6 +103,8 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
       mesh_.positions_m[v] = x.cast<float>();
     }
   }
+  last_projection_.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - projection_start).count();
   if (changed == 0 && !any) return 0;
   if (!normals_computed_) {
     normals_.computeAll(mesh_);

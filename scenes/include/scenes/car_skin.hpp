@@ -41,8 +41,10 @@ class CarSkin {
 
   /// What the last update's projection did.
   struct ProjectionStats {
-    std::size_t tested = 0;     ///< vertices tested against an obstacle (with repeats across obstacles)
-    std::size_t projected = 0;  ///< vertices moved onto an obstacle's surface
+    std::size_t tested = 0;         ///< vertices tested against an obstacle (with repeats across obstacles)
+    std::size_t projected = 0;      ///< vertices moved onto an obstacle's surface
+    std::size_t tested_ground = 0;  ///< of `tested`, those against a half-space (the ground)
+    double ms = 0;                  ///< time of the restore, the queries and the projection [ms]
   };
   const ProjectionStats& lastProjection() const { return last_projection_; }
   /// The point the projection pushes toward: the middle of the rest mesh's bounding box [m].
