@@ -33,10 +33,7 @@ void enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m, const 
     return;
   }
   Eigen::Vector3d outside = start_m, inside = end_m;
-  for (int k = 0; k < kBisections; ++k) {
-    const Eigen::Vector3d middle = 0.5 * (outside + inside);
-    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside : outside) = middle;
-  }
+  bisectSurface(shape, outside, inside, kBisections);
   if (!penetration(shape, inside, probe) || !(probe.depth_m > 0)) return;
   // The plane of the entry face, and the end point's depth below it.
   const Eigen::Vector3d surface_m = inside + probe.depth_m * probe.normal;

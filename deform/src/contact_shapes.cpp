@@ -176,6 +176,15 @@ void checkContactShape(const ContactShape& shape, const char* field_name) {
       shape);
 }
 
+void bisectSurface(const ContactShape& shape, Eigen::Vector3d& outside_m, Eigen::Vector3d& inside_m,
+                   int bisections) {
+  Penetration probe;
+  for (int k = 0; k < bisections; ++k) {
+    const Eigen::Vector3d middle = 0.5 * (outside_m + inside_m);
+    (penetration(shape, middle, probe) && probe.depth_m > 0 ? inside_m : outside_m) = middle;
+  }
+}
+
 bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m) {
   const double length = direction.norm();
   const Eigen::Vector3d unit = length > 0 ? Eigen::Vector3d(direction / length) : Eigen::Vector3d::UnitZ();

@@ -166,7 +166,11 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   auto start = Clock::now();
   std::vector<bool> changed(cars_.size(), false);
   for (std::size_t i = 0; i < cars_.size(); ++i) {
-    changed[i] = cars_[i].skin->update(simulation.controlDisplacements(run.carId(i))) > 0;
+    const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(run.carId(i));
+    scenes::CarSkin& skin = *cars_[i].skin;
+    obstacles_near_.gather(simulation, run.carId(i), skin.restBounds(),
+                           skin.displacementBound_m(displacements));
+    changed[i] = skin.update(displacements, obstacles_near_.shapes()) > 0;
   }
   times.embed_ms += msSince(start);
 
@@ -222,7 +226,10 @@ deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car) {
   const vehicle::CarId id = run.carId(car);
   scenes::CarSkin skin(run.model(car).body, simulation.controlRestPoints(id),
                        simulation.deformationSettings(id));
-  skin.update(simulation.controlDisplacements(id));
+  const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(id);
+  scenes::SkinObstacles obstacles;
+  obstacles.gather(simulation, id, skin.restBounds(), skin.displacementBound_m(displacements));
+  skin.update(displacements, obstacles.shapes());
   return skin.mesh();
 }
 

@@ -3,6 +3,7 @@
 // displacement for the heat map; its wheels turning, steering and riding the suspension), the
 // obstacles where the world has them now, from the scene's camera.
 #include <scenes/car_skin.hpp>
+#include <scenes/skin_obstacles.hpp>
 
 #include <deform/skin.hpp>
 #include <scenes/scene_run.hpp>
@@ -53,15 +54,17 @@ class RunRenderer {
   std::vector<ObstacleMesh> obstacles_;
   render::Environment environment_;
   bool heatmap_ = false;
+  scenes::SkinObstacles obstacles_near_;  ///< scratch: what a car's render mesh is kept out of
 };
 
-/// The car's body deformed as it is now (vehicle frame), without rendering: for `sandbox export`.
 /// How far the bodywork around each of `points_m` (vehicle frame, embedded in the control points by
 /// `skin`) moved in the car's ground plane [m]: wheel hubs carried back by a crushed front.
 std::vector<Eigen::Vector3d> embeddedShifts_m(const deform::Skin& skin,
                                               const std::vector<Eigen::Vector3f>& points_m,
                                               const std::vector<Eigen::Vector3d>& displacements_m);
 
+/// The car's body deformed as it is now (vehicle frame), kept out of what it touches, without rendering:
+/// for `sandbox export`.
 deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car);
 
 }  // namespace sandbox

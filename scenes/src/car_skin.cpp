@@ -1,6 +1,12 @@
 #include <scenes/car_skin.hpp>
 
+#include <deform/surface_projection.hpp>
+
+#include <algorithm>
 #include <cassert>
+#include <chrono>
+#include <cmath>
+#include <variant>
 
 namespace scenes {
 
@@ -12,31 +18,101 @@ CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& c
       mesh_(body),
       last_displacements_m_(control_rest_m.size(), Eigen::Vector3d::Zero()),
       moved_(control_rest_m.size(), 0),
-      normals_(body) {
+      normals_(body),
+      grid_(body.positions_m),
+      is_projected_(body.positions_m.size(), 0) {
   if (mesh_.normals.size() != mesh_.positions_m.size()) {
     normals_.computeAll(mesh_);
     normals_computed_ = true;
   }
+  interior_m_ = 0.5 * (grid_.bounds().min_m + grid_.bounds().max_m);
+  // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
+  // negative weights.
+  for (std::size_t j = 0; j < skin_.vertexCount(); ++j) {
+    double gain = 0;
+    for (std::size_t k = 0; k < skin_.influences(); ++k) gain += std::abs(skin_.slotWeight(j, k));
+    displacement_gain_ = std::max(displacement_gain_, gain);
+  }
+}
+
+Eigen::Vector3f CarSkin::skinPosition(std::size_t vertex) const {
+  if (!is_projected_[vertex]) return mesh_.positions_m[vertex];
+  const auto at = std::find(projected_.begin(), projected_.end(), static_cast<uint32_t>(vertex));
+  return projected_from_m_[static_cast<std::size_t>(at - projected_.begin())];
+}
+
+double CarSkin::displacementBound_m(const std::vector<Eigen::Vector3d>& displacements_m) const {
+  double largest_m = 0;
+  for (const Eigen::Vector3d& d : displacements_m) largest_m = std::max(largest_m, d.norm());
+  return displacement_gain_ * largest_m + deform::kProjectionClearance_m;
 }
 
 std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m) {
+  return update(displacements_m, {});
+}
+
+std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
+                            const std::vector<deform::ContactShape>& obstacles) {
   assert(displacements_m.size() == last_displacements_m_.size());
+  last_projection_ = {};
   bool any = false;
   for (std::size_t i = 0; i < displacements_m.size(); ++i) {
     moved_[i] = displacements_m[i] != last_displacements_m_[i] ? 1 : 0;
     any = any || moved_[i];
   }
-  if (!any) return 0;
-  const std::size_t recomputed = skin_.deformMoved(rest_m_.data(), displacements_m.data(), moved_,
-                                                   mesh_.positions_m.data(), 0, &vertex_recomputed_);
-  last_displacements_m_ = displacements_m;
+  if (!any && obstacles.empty() && projected_.empty()) return 0;
+  std::size_t changed = 0;
+  if (any) {
+    changed = skin_.deformMoved(rest_m_.data(), displacements_m.data(), moved_, mesh_.positions_m.data(), 0,
+                                &vertex_recomputed_);
+    last_displacements_m_ = displacements_m;
+  } else {
+    vertex_recomputed_.assign(mesh_.positions_m.size(), 0);
+  }
+  const auto projection_start = std::chrono::steady_clock::now();
+  // Back to the skin's position before the test (the skin did not recompute a vertex whose control
+  // points stayed put, and its position now is the projected one).
+  for (std::size_t k = 0; k < projected_.size(); ++k) {
+    const uint32_t v = projected_[k];
+    is_projected_[v] = 0;
+    if (vertex_recomputed_[v]) continue;
+    mesh_.positions_m[v] = projected_from_m_[k];
+    vertex_recomputed_[v] = 1;
+    ++changed;
+  }
+  projected_.clear();
+  projected_from_m_.clear();
+  const double reach_m = obstacles.empty() ? 0 : displacementBound_m(displacements_m);
+  for (const deform::ContactShape& shape : obstacles) {
+    candidates_.clear();
+    deform::verticesNear(shape, grid_, reach_m, candidates_);
+    last_projection_.tested += candidates_.size();
+    if (std::holds_alternative<deform::HalfSpaceShape>(shape))
+      last_projection_.tested_ground += candidates_.size();
+    for (const uint32_t v : candidates_) {
+      Eigen::Vector3d x = mesh_.positions_m[v].cast<double>();
+      if (!deform::projectOutOf(shape, interior_m_, x)) continue;
+      if (!is_projected_[v]) {
+        is_projected_[v] = 1;
+        projected_.push_back(v);
+        projected_from_m_.push_back(mesh_.positions_m[v]);
+        ++last_projection_.projected;
+        if (!vertex_recomputed_[v]) ++changed;
+        vertex_recomputed_[v] = 1;
+      }
+      mesh_.positions_m[v] = x.cast<float>();
+    }
+  }
+  last_projection_.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - projection_start).count();
+  if (changed == 0 && !any) return 0;
   if (!normals_computed_) {
     normals_.computeAll(mesh_);
     normals_computed_ = true;
   } else {
     normals_.update(mesh_, vertex_recomputed_);
   }
-  return recomputed;
+  return changed;
 }
 
 }  // namespace scenes

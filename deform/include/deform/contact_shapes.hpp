@@ -58,6 +58,11 @@ struct Penetration {
 bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
                  double margin_m = 0);
 
+/// Narrows the segment `outside_m`-`inside_m` (one end outside `shape`, the other inside) by halving it
+/// `bisections` times: both ends move toward where the segment crosses the surface, each keeping its side.
+void bisectSurface(const ContactShape& shape, Eigen::Vector3d& outside_m, Eigen::Vector3d& inside_m,
+                   int bisections);
+
 /// The point of `shape` furthest along `direction` (its support point) [m]. False for a half-space,
 /// which has none (it is unbounded); the direction need not be unit.
 bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m);

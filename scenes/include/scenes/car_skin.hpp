@@ -2,8 +2,13 @@
 // A car's render mesh following its control points through the skin (deform/skin.hpp, idw or mls):
 // weights built once from the rest control points, then per frame only the vertices that a moved
 // control point influences are recomputed (deform::Skin::deformMoved, DESIGN.md section 8), and only
-// the normals of the vertices next to them (deform::VertexNormals).
+// the normals of the vertices next to them (deform::VertexNormals). Then the vertices inside what the car
+// touches are moved onto its surface (deform/surface_projection.hpp), found through a grid over the rest
+// positions; a projected vertex goes back to the skin's position before it is tested again.
 #include <vehicle/simulation.hpp>
+
+#include <deform/contact_shapes.hpp>
+#include <deform/vertex_grid.hpp>
 
 #include <deform/mesh.hpp>
 #include <deform/skin.hpp>
@@ -27,6 +32,30 @@ class CarSkin {
   /// Returns the vertices recomputed.
   std::size_t update(const std::vector<Eigen::Vector3d>& displacements_m);
 
+  /// As update(displacements_m), then every vertex inside one of `obstacles` (vehicle frame, now) is
+  /// projected onto its surface on the side of the car's interior (deform::projectOutOf), the vertices
+  /// projected last time having been returned to the skin's position first. Only the vertices near an
+  /// obstacle are tested (deform::verticesNear). Returns the vertices whose position changed.
+  std::size_t update(const std::vector<Eigen::Vector3d>& displacements_m,
+                     const std::vector<deform::ContactShape>& obstacles);
+
+  /// What the last update's projection did.
+  struct ProjectionStats {
+    std::size_t tested = 0;         ///< vertices tested against an obstacle (with repeats across obstacles)
+    std::size_t projected = 0;      ///< vertices moved onto an obstacle's surface
+    std::size_t tested_ground = 0;  ///< of `tested`, those against a half-space (the ground)
+    double ms = 0;                  ///< time of the restore, the queries and the projection [ms]
+  };
+  const ProjectionStats& lastProjection() const { return last_projection_; }
+  /// The point the projection pushes toward: the middle of the rest mesh's bounding box [m].
+  const Eigen::Vector3d& interior_m() const { return interior_m_; }
+  /// The most any vertex can be from its rest position for these control-point displacements [m].
+  double displacementBound_m(const std::vector<Eigen::Vector3d>& displacements_m) const;
+  /// The rest mesh's bounding box (vehicle frame) [m].
+  const deform::Aabb& restBounds() const { return grid_.bounds(); }
+  /// Where the skin puts every vertex now, before the projection (vehicle frame) [m].
+  Eigen::Vector3f skinPosition(std::size_t vertex) const;
+
   /// The deformed mesh now (vehicle frame), normals up to date.
   const deform::Mesh& mesh() const { return mesh_; }
   const std::vector<Eigen::Vector3f>& restPositions() const { return rest_m_; }
@@ -41,6 +70,15 @@ class CarSkin {
   deform::VertexNormals normals_;           ///< cached triangle normals, for partial normal updates
   bool normals_computed_ = false;           ///< every normal computed from the triangles at least once
   std::vector<uint8_t> vertex_recomputed_;  ///< scratch: vertices the last update moved
+
+  deform::VertexGrid grid_;          ///< rest positions, for the vertices near an obstacle
+  Eigen::Vector3d interior_m_;       ///< middle of the rest bounding box [m]
+  double displacement_gain_ = 1;     ///< largest sum of |weights| of a vertex: |v - v0| <= gain max |d_i|
+  std::vector<uint32_t> projected_;  ///< vertices off the skin's position (on an obstacle's surface)
+  std::vector<Eigen::Vector3f> projected_from_m_;  ///< their skin positions [m]
+  std::vector<uint8_t> is_projected_;              ///< one flag per vertex, for projected_
+  std::vector<uint32_t> candidates_;               ///< scratch
+  ProjectionStats last_projection_;
 };
 
 }  // namespace scenes
