@@ -393,38 +393,46 @@ TEST_CASE("Crush: a graze's restitution is its separation speed, not the driver 
 }
 
 TEST_CASE("Crush: the collision hull follows the dent after the contact; a second impact", "[crush]") {
-  Simulation sim;
-  CarStart start;
-  start.speed_mps = 40 * kKmh;
-  const CarId id = sim.addDeformableCar(sedan(), {}, start, {});
-  const double front = frontOf(sim, id);
-  sim.world().addWall(Pose{{front + 0.3 + 0.1, 0, 1.0}, Eigen::Quaterniond::Identity()}, {0.2, 6, 2});
-  Car& car = sim.world().car(id);
-  DriverInput brake;
-  brake.brake = 1;
-  car.setInput(brake);  // held after the rebound, so the car stops near the wall
-  sim.run(1.5);
-  const CrashMetrics first = sim.metrics(id);
-  checkSane(first);
-  DriverInput back;
-  back.throttle = 1;
-  back.reverse = true;
-  car.setInput(back);  // reverse away (the car comes to rest against the wall: the contact goes on) ...
-  sim.run(0.8);
-  // Rebuilt from the dented body once the contact ended: its front is the crushed front.
-  double hull_front = -1e300;
-  for (const auto& p : car.collisionHull().points_m) hull_front = std::max(hull_front, p.x());
-  CHECK(hull_front < front - 0.5 * first.residual_crush_m);
-  CHECK(sim.world().crushes(id));  // the rigid parts stay where they are: the stroke is their distance
-  DriverInput forward;
-  forward.throttle = 1;
-  car.setInput(forward);  // ... and drive into the wall again
-  sim.run(2.5);
-  const CrashMetrics second = sim.metrics(id);
-  checkSane(second);
-  CHECK(second.residual_crush_m >= first.residual_crush_m - 0.01);
-  CHECK(second.energy.plastic_work_J > first.energy.plastic_work_J);
-  CHECK(sim.world().car(id).bodyPose().position_m.x() < front);  // still on its side of the wall
+  // With either backstop: the rigid parts stay where they are; the shrunk hull keeps the stroke left.
+  for (const Backstop backstop : {Backstop::RigidParts, Backstop::ShrunkHull}) {
+    INFO(backstop == Backstop::RigidParts ? "rigid parts" : "shrunk hull");
+    Simulation sim;
+    CarStart start;
+    start.speed_mps = 40 * kKmh;
+    DeformationSettings deformation;
+    deformation.backstop = backstop;
+    const CarId id = sim.addDeformableCar(sedan(), {}, start, deformation);
+    const double front = frontOf(sim, id);
+    sim.world().addWall(Pose{{front + 0.3 + 0.1, 0, 1.0}, Eigen::Quaterniond::Identity()}, {0.2, 6, 2});
+    Car& car = sim.world().car(id);
+    DriverInput brake;
+    brake.brake = 1;
+    car.setInput(brake);  // held after the rebound, so the car stops near the wall
+    sim.run(1.5);
+    const CrashMetrics first = sim.metrics(id);
+    checkSane(first);
+    DriverInput back;
+    back.throttle = 1;
+    back.reverse = true;
+    car.setInput(back);  // reverse away (the car comes to rest against the wall: the contact goes on) ...
+    sim.run(0.8);
+    // Rebuilt from the dented body once the contact ended: its front is the crushed front.
+    double hull_front = -1e300;
+    for (const auto& p : car.collisionHull().points_m) hull_front = std::max(hull_front, p.x());
+    CHECK(hull_front < front - 0.5 * first.residual_crush_m);
+    CHECK(sim.world().crushes(id));
+    if (backstop == Backstop::ShrunkHull)
+      CHECK(sim.world().crushAllowance(id) < deformation.crush_allowance_m);
+    DriverInput forward;
+    forward.throttle = 1;
+    car.setInput(forward);  // ... and drive into the wall again
+    sim.run(2.5);
+    const CrashMetrics second = sim.metrics(id);
+    checkSane(second);
+    CHECK(second.residual_crush_m >= first.residual_crush_m - 0.01);
+    CHECK(second.energy.plastic_work_J > first.energy.plastic_work_J);
+    CHECK(sim.world().car(id).bodyPose().position_m.x() < front);  // still on its side of the wall
+  }
 }
 
 TEST_CASE("Crush: deterministic, same input gives the same state hash", "[crush]") {
