@@ -72,10 +72,12 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   const auto projection_start = std::chrono::steady_clock::now();
   // Back to the skin's position before the test (the skin did not recompute a vertex whose control
   // points stayed put, and its position now is the projected one).
+  restored_.clear();
   for (std::size_t k = 0; k < projected_.size(); ++k) {
     const uint32_t v = projected_[k];
     is_projected_[v] = 0;
     if (vertex_recomputed_[v]) continue;
+    restored_.emplace_back(v, mesh_.positions_m[v]);
     mesh_.positions_m[v] = projected_from_m_[k];
     vertex_recomputed_[v] = 1;
     ++changed;
@@ -103,6 +105,13 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
       mesh_.positions_m[v] = x.cast<float>();
     }
   }
+  // A vertex put back and projected again to the very same place did not change (a car resting against a
+  // wall re-uploads nothing).
+  for (const auto& [v, before] : restored_)
+    if (mesh_.positions_m[v] == before) {
+      vertex_recomputed_[v] = 0;
+      --changed;
+    }
   last_projection_.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - projection_start).count();
   if (changed == 0 && !any) return 0;

@@ -80,7 +80,7 @@ TEST_CASE("mls reaches vertices off a flat side of the hull: 250 and 1000 contro
     const auto control = deform::buildControlMesh(points, n).points_m;
     const auto mls = deform::Skin::build(s.car.body.positions_m, control, {3.5, 8, 2, SkinMethod::mls});
     CHECK(deform::affineReproductionErrorMax(mls, s.car.body.positions_m, control, map, 2) < 1e-5);
-    CHECK(deform::skinWeightSpread(mls).largest_abs_weight < 20);
+    CHECK(deform::skinWeightSpread(mls).largest_abs_weight < 5);  // well inside the cap on sum |w|, 20
   }
 }
 

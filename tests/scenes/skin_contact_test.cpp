@@ -82,8 +82,9 @@ TEST_CASE("no render vertex is more than 1 cm inside an obstacle in any filmed f
         update_ms / static_cast<double>(frame_count * static_cast<int>(run.carCount())),
         projection_ms / static_cast<double>(frame_count * static_cast<int>(run.carCount())), busiest_ms,
         most_tested, busiest_ground, run.model(0).body.positions_m.size(), most_projected);
-    CHECK(after_m <= 0.01);
-    CHECK(after_m <= 1e-5);  // what the projection leaves: float rounding
+    CHECK(before_m > 0.01);  // the skin alone does leave vertices inside: the projection had work
+    CHECK(most_projected > 0);
+    CHECK(after_m <= 1e-5);  // within the 1 cm asked; what the projection leaves is float rounding
   }
 }
 
@@ -121,6 +122,11 @@ TEST_CASE("the projection moves only the vertices inside; out of contact they re
   CHECK(inside > 0);
   CHECK(skin.lastProjection().projected == inside);
   CHECK(skin.lastProjection().tested < body.positions_m.size() / 2);
+
+  // Resting against the wall, nothing moving: put back and projected again to the same place, no change.
+  const std::vector<Eigen::Vector3f> resting = skin.mesh().positions_m;
+  CHECK(skin.update(displacement, {wall}) == 0);
+  REQUIRE(skin.mesh().positions_m == resting);
 
   // The wall gone, the dent unchanged: every vertex back where the skin puts it, normals as computed
   // from scratch.

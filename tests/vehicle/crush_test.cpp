@@ -395,7 +395,7 @@ TEST_CASE("Crush: a graze's restitution is its separation speed, not the driver 
 TEST_CASE("Crush: the collision hull follows the dent after the contact; a second impact", "[crush]") {
   // With either backstop: the rigid parts stay where they are; the shrunk hull keeps the stroke left.
   for (const Backstop backstop : {Backstop::RigidParts, Backstop::ShrunkHull}) {
-    INFO(backstop == Backstop::RigidParts ? "rigid parts" : "shrunk hull");
+    INFO((backstop == Backstop::RigidParts ? "rigid parts" : "shrunk hull"));
     Simulation sim;
     CarStart start;
     start.speed_mps = 40 * kKmh;

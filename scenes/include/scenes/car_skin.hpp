@@ -15,6 +15,7 @@
 #include <deform/vertex_normals.hpp>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace scenes {
@@ -35,7 +36,8 @@ class CarSkin {
   /// As update(displacements_m), then every vertex inside one of `obstacles` (vehicle frame, now) is
   /// projected onto its surface on the side of the car's interior (deform::projectOutOf), the vertices
   /// projected last time having been returned to the skin's position first. Only the vertices near an
-  /// obstacle are tested (deform::verticesNear). Returns the vertices whose position changed.
+  /// obstacle are tested (deform::verticesNear). Returns the vertices whose position changed (0 for a
+  /// car resting against an obstacle: put back and projected again to the same place is no change).
   std::size_t update(const std::vector<Eigen::Vector3d>& displacements_m,
                      const std::vector<deform::ContactShape>& obstacles);
 
@@ -47,8 +49,6 @@ class CarSkin {
     double ms = 0;                  ///< time of the restore, the queries and the projection [ms]
   };
   const ProjectionStats& lastProjection() const { return last_projection_; }
-  /// The point the projection pushes toward: the middle of the rest mesh's bounding box [m].
-  const Eigen::Vector3d& interior_m() const { return interior_m_; }
   /// The most any vertex can be from its rest position for these control-point displacements [m].
   double displacementBound_m(const std::vector<Eigen::Vector3d>& displacements_m) const;
   /// The rest mesh's bounding box (vehicle frame) [m].
@@ -77,7 +77,9 @@ class CarSkin {
   std::vector<uint32_t> projected_;  ///< vertices off the skin's position (on an obstacle's surface)
   std::vector<Eigen::Vector3f> projected_from_m_;  ///< their skin positions [m]
   std::vector<uint8_t> is_projected_;              ///< one flag per vertex, for projected_
-  std::vector<uint32_t> candidates_;               ///< scratch
+  /// Projected vertices put back to the skin this update, with where they stood before [m].
+  std::vector<std::pair<uint32_t, Eigen::Vector3f>> restored_;
+  std::vector<uint32_t> candidates_;  ///< scratch
   ProjectionStats last_projection_;
 };
 
