@@ -43,7 +43,9 @@ VertexGrid::VertexGrid(const std::vector<Eigen::Vector3f>& rest_m, double per_ce
 Eigen::Vector3i VertexGrid::cellOf(const Eigen::Vector3d& p_m) const {
   Eigen::Vector3i c;
   for (int k = 0; k < 3; ++k)
-    c[k] = std::clamp(static_cast<int>(std::floor((p_m[k] - bounds_.min_m[k]) / cell_m_)), 0, cells_[k] - 1);
+    // Clamped as a double first: a far point (a reach of 1e10 m) would overflow the int.
+    c[k] = static_cast<int>(std::clamp(std::floor((p_m[k] - bounds_.min_m[k]) / cell_m_), 0.0,
+                                       static_cast<double>(cells_[k] - 1)));
   return c;
 }
 

@@ -32,7 +32,6 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   if (flags.k > 65536) throw deform::InputError("--k: at most 65536 (0 means dense)");
   if (!(std::isfinite(flags.mass_kg) && flags.mass_kg > 0))
     throw deform::InputError("--mass-kg: must be above zero");
-  const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   MeshReportOptions options;
   options.control_points = flags.control_points;
   options.lod = deform::parseLodMethod(flags.lod, "--lod");
@@ -40,6 +39,8 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   options.skin = {flags.alpha, flags.k, flags.threads, deform::SkinMethod::idw};
   if (!deform::parseSkinMethod(flags.skin_method, options.skin.method))
     throw deform::InputError("--skin-method: must be idw or mls (got '" + flags.skin_method + "')");
+  // Every flag checked before the mesh is loaded (a large file takes seconds).
+  const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   const auto report = meshReport(model, options);
   if (flags.json)
     std::printf("%s\n", report.dump(2).c_str());

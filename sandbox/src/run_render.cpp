@@ -165,8 +165,10 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
   std::vector<bool> changed(cars_.size(), false);
+  std::vector<std::vector<Eigen::Vector3d>> displacements_of(cars_.size());
   for (std::size_t i = 0; i < cars_.size(); ++i) {
-    const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(run.carId(i));
+    displacements_of[i] = simulation.controlDisplacements(run.carId(i));
+    const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
     scenes::CarSkin& skin = *cars_[i].skin;
     obstacles_near_.gather(simulation, run.carId(i), skin.restBounds(),
                            skin.displacementBound_m(displacements));
@@ -191,9 +193,8 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
     // Hubs moved with the bodywork around them, in the ground plane of the car (the suspension keeps
     // their height).
     const std::vector<Eigen::Vector3d> shifts =
-        car.hub_rest_m.empty()
-            ? std::vector<Eigen::Vector3d>{}
-            : embeddedShifts_m(car.hub_skin, car.hub_rest_m, simulation.controlDisplacements(run.carId(i)));
+        car.hub_rest_m.empty() ? std::vector<Eigen::Vector3d>{}
+                               : embeddedShifts_m(car.hub_skin, car.hub_rest_m, displacements_of[i]);
     for (std::size_t w = 0; w < car.wheels.size() && w < chassis.wheels().size(); ++w) {
       vehicle::Pose wheel = chassis.wheelPose(w);
       if (w < shifts.size()) wheel.position_m += vehicle_pose.orientation * shifts[w];

@@ -18,7 +18,8 @@ DentedCar dentCar(scenes::SceneRun& run, std::optional<deform::SkinMethod> metho
   vehicle::DeformationSettings settings = sim.deformationSettings(id);
   if (method) settings.skin_method = *method;
   scenes::CarSkin skin(run.model(0).body, sim.controlRestPoints(id), settings);
-  skin.update(sim.controlDisplacements(id));
+  const std::vector<Eigen::Vector3d> displacements = sim.controlDisplacements(id);
+  skin.update(displacements);
   DentedCar car;
   car.model = run.model(0);
   car.dented = skin.mesh();
@@ -27,9 +28,10 @@ DentedCar dentCar(scenes::SceneRun& run, std::optional<deform::SkinMethod> metho
   for (const auto& w : car.model.wheels) hubs.push_back(w.centre_m.cast<float>());
   car.dented_wheels = car.model.wheels;
   if (!hubs.empty()) {
-    const deform::Skin hub_skin = deform::Skin::build(
-        hubs, sim.controlRestPoints(id), deform::SkinOptions{settings.alpha, settings.k_nearest, 1});
-    const auto shifts = embeddedShifts_m(hub_skin, hubs, sim.controlDisplacements(id));
+    const deform::Skin hub_skin =
+        deform::Skin::build(hubs, sim.controlRestPoints(id),
+                            deform::SkinOptions{settings.alpha, settings.k_nearest, 1, settings.skin_method});
+    const auto shifts = embeddedShifts_m(hub_skin, hubs, displacements);
     for (std::size_t k = 0; k < shifts.size(); ++k) car.dented_wheels[k].centre_m += shifts[k];
   }
   car.colours = deform::displacementColours(skin.restPositions(), car.dented.positions_m);
