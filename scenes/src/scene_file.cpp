@@ -126,6 +126,12 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
                          "shrunk_hull"
                      ? vehicle::Backstop::ShrunkHull
                      : vehicle::Backstop::RigidParts;
+    // Each backstop has its own key: the other one's would be silently ignored.
+    if (s.backstop == vehicle::Backstop::RigidParts && object->has("crush_allowance_m"))
+      object->fail("crush_allowance_m",
+                   "applies to backstop shrunk_hull only (the rigid parts are the stroke)");
+    if (s.backstop == vehicle::Backstop::ShrunkHull && object->has("rigid_parts"))
+      object->fail("rigid_parts", "applies to backstop rigid_parts only");
     if (object->has("rigid_parts")) {
       s.rigid_parts.clear();
       for (JsonObject& part : object->objects("rigid_parts")) {
@@ -330,6 +336,8 @@ Override parseOverride(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+json parseRefusingDuplicates(const std::string& text, const std::string& source);
+
 void applyOverride(json& document, const Override& override) {
   // "obstacles[0].x" -> "obstacles.0.x"
   std::string path = override.path;
@@ -342,8 +350,12 @@ void applyOverride(json& document, const Override& override) {
     parts.push_back(part);
   }
   if (parts.empty()) throw deform::InputError("--set: empty key path");
-  json value = json::parse(override.value, nullptr, false);
-  if (value.is_discarded()) value = override.value;  // a bare word: a string
+  json value;
+  try {
+    value = parseRefusingDuplicates(override.value, "--set " + override.path);
+  } catch (const json::parse_error&) {
+    value = override.value;  // a bare word: a string
+  }
   json* node = &document;
   std::string walked;
   for (std::size_t i = 0; i < parts.size(); ++i) {

@@ -146,6 +146,11 @@ TEST_CASE("a key given twice is refused naming the file and the key's path", "[s
       {"type": "wall", "position_m": [5, 0], "size_m": [1, 4, 1]},
       {"type": "wall", "position_m": [9, 0], "size_m": [1, 4, 1]}]})";
   CHECK(scenes::loadScene(path.string()).obstacles.size() == 2);
+  // In an override's value too.
+  CHECK_THROWS_WITH(
+      scenes::loadScene(path.string(),
+                        {scenes::parseOverride(R"(vehicle.start={"speed_kmh": 1, "speed_kmh": 2})")}),
+      Catch::Contains("speed_kmh: key given twice"));
   fs::remove(path);
 }
 
@@ -259,6 +264,7 @@ TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or th
       json::parse(R"([{"box_min": [0.3, 0.25, 0.1], "box_max": [0.7, 0.75, 0.8]}])");
   REQUIRE(settings(doc).rigid_parts.size() == 1);
   CHECK(settings(doc).rigid_parts[0].min_m.x() == 0.3);
+  doc["vehicle"]["deformation"].erase("rigid_parts");
   doc["vehicle"]["deformation"]["backstop"] = "shrunk_hull";
   CHECK(settings(doc).backstop == vehicle::Backstop::ShrunkHull);
 
@@ -274,6 +280,17 @@ TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or th
   bad = minimalScene();
   bad["vehicle"]["deformation"]["backstop"] = "airbag";
   CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.backstop"));
+  // A key of the other backstop would be ignored: refused.
+  bad = minimalScene();
+  bad["vehicle"]["deformation"]["crush_allowance_m"] = 0.5;
+  CHECK_THAT(refusal(bad),
+             Catch::Contains("vehicle.deformation.crush_allowance_m: applies to backstop shrunk_hull"));
+  bad["vehicle"]["deformation"]["backstop"] = "shrunk_hull";
+  CHECK(refusal(bad) == "(accepted)");
+  bad["vehicle"]["deformation"]["rigid_parts"] =
+      json::parse(R"([{"box_min": [0.3, 0, 0], "box_max": [0.7, 1, 1]}])");
+  CHECK_THAT(refusal(bad),
+             Catch::Contains("vehicle.deformation.rigid_parts: applies to backstop rigid_parts"));
 }
 
 TEST_CASE("vehicle.deformation.skin_method takes idw or mls and refuses anything else", "[scenes]") {

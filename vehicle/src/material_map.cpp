@@ -86,11 +86,13 @@ std::vector<RegionMaterial> sedanMaterialMap() {
   return map;
 }
 
-deform::Aabb placeFractions(const deform::Aabb& fractions, const deform::Aabb& bounds_m) {
+deform::Aabb placeFractions(const deform::Aabb& fractions, const deform::Aabb& bounds_m, bool reach_beyond) {
   const Eigen::Vector3d size = bounds_m.size_m();
-  const deform::Aabb& f = fractions;
-  const Eigen::Vector3d lo(reach(f.min_m.x()), reach(f.min_m.y()), reach(f.min_m.z()));
-  const Eigen::Vector3d hi(reach(f.max_m.x()), reach(f.max_m.y()), reach(f.max_m.z()));
+  Eigen::Vector3d lo = fractions.min_m, hi = fractions.max_m;
+  if (reach_beyond) {
+    lo = Eigen::Vector3d(reach(lo.x()), reach(lo.y()), reach(lo.z()));
+    hi = Eigen::Vector3d(reach(hi.x()), reach(hi.y()), reach(hi.z()));
+  }
   return {bounds_m.min_m + lo.cwiseProduct(size), bounds_m.min_m + hi.cwiseProduct(size)};
 }
 
@@ -117,7 +119,7 @@ std::vector<deform::MaterialRegion> placeMaterialMap(const std::vector<RegionMat
         throw deform::InputError(field + ".box: its lower corner must not exceed its upper one");
       deform::MaterialRegion r;
       r.material = material;
-      r.box_m = placeFractions(box, bounds_m);
+      r.box_m = placeFractions(box, bounds_m, true);
       placed.push_back(r);
     }
   }

@@ -149,7 +149,8 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
       impl_->world.setCrushAllowance(id, deformation.crush_allowance_m);
     } else {
       std::vector<deform::Aabb> parts;
-      for (const deform::Aabb& f : deformation.rigid_parts) parts.push_back(placeFractions(f, bounds_m));
+      for (const deform::Aabb& f : deformation.rigid_parts)
+        parts.push_back(placeFractions(f, bounds_m, false));
       impl_->world.setRigidParts(id, parts);
     }
     // Crush: the shell's points are real mass, moving on their own and pulling on the chassis through

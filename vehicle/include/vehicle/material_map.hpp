@@ -47,9 +47,10 @@ struct RegionMaterial {
 /// ratios, not from a calibration of this model.
 std::vector<RegionMaterial> sedanMaterialMap();
 
-/// A box in fractions of the car's bounding box placed on a car whose skin spans `bounds_m` (a fraction of
-/// 0 or 1 reaches 1 % beyond the box).
-deform::Aabb placeFractions(const deform::Aabb& fractions, const deform::Aabb& bounds_m);
+/// A box in fractions of the car's bounding box placed on a car whose skin spans `bounds_m`. With
+/// `reach_beyond` (a region of the skin), a fraction of 0 or 1 reaches 1 % beyond the box, so the skin on
+/// its faces is in; without (a rigid part), the box stays inside the car.
+deform::Aabb placeFractions(const deform::Aabb& fractions, const deform::Aabb& bounds_m, bool reach_beyond);
 
 /// The sedan's rigid parts (DeformationSettings::rigid_parts), in fractions of its bounding box, and every
 /// car's default: the passenger cell (between the axles, the sills and the roof rails inside it) and the

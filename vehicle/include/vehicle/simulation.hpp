@@ -71,8 +71,9 @@ struct DeformationSettings {
   double damping = 80.0;
   /// Coulomb friction of control points sliding on what they hit [-].
   double contact_friction = 0.3;
-  /// Crush: intrusion of the chassis hull into what it hits beyond which ODE's rigid contact takes over
-  /// (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below max_deviation_m.
+  /// Crush with backstop ShrunkHull: intrusion of the chassis hull into what it hits beyond which ODE's rigid
+  /// contact takes over (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below
+  /// max_deviation_m.
   double crush_allowance_m = 0.8;
   /// Crush: what stops the intrusion once the crush stroke is used up. RigidParts (the default): the
   /// car's rigid parts, `rigid_parts`; ShrunkHull: the hull shrunk by crush_allowance_m.
@@ -80,7 +81,8 @@ struct DeformationSettings {
   /// The rigid parts, boxes in fractions of the car's bounding box (material_map.hpp: x 0 at the rear to
   /// 1 at the front, y right to left, z bottom to top).
   std::vector<deform::Aabb> rigid_parts = sedanRigidParts();
-  /// Scale of the chassis's inertial (fictitious) forces on the control points [-].
+  /// Visual coupling only: scale of the chassis's inertial (fictitious) forces on the control points [-]
+  /// (crush always uses 1, the shell's real inertia).
   double inertial_scale = 0.0;
   /// Visual: share of each contact impulse of ODE's rigid contact handed to the control points [-] (the
   /// paper's coupling; not yet given a physical meaning, see docs/CRASH_CALIBRATION.md).
