@@ -20,6 +20,10 @@ BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state) {
   }
   for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
     const auto& c = settings.spokes[k];
+    if (settings.anchored_columns) {
+      elastic((x[c.point] - state.column_rest_m[k]).norm(), c.compliance_m_per_N);
+      continue;
+    }
     elastic((x[c.point] - settings.core_m - settings.spoke_anchor_m[k]).norm() - state.spoke_rest_m[k],
             c.compliance_m_per_N);
   }
@@ -49,8 +53,16 @@ double constraintStrainRms(const BodySettings& settings, const BodyState& state)
   const auto& x = state.positions_m;
   for (std::size_t k = 0; k < settings.edges.size(); ++k)
     add(x[settings.edges[k].a], x[settings.edges[k].b], state.edge_rest_m[k]);
-  for (std::size_t k = 0; k < settings.spokes.size(); ++k)
+  for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
+    if (settings.anchored_columns) {  // the column's displacement from its rest place over its length
+      const double strain =
+          (x[settings.spokes[k].point] - state.column_rest_m[k]).norm() / settings.spoke_rest_m[k];
+      sum2 += strain * strain;
+      ++count;
+      continue;
+    }
     add(x[settings.spokes[k].point], settings.core_m + settings.spoke_anchor_m[k], state.spoke_rest_m[k]);
+  }
   for (std::size_t k = 0; k < settings.bends.size(); ++k)
     add(x[settings.bends[k].left], x[settings.bends[k].right], state.bend_rest_m[k]);
   return count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;

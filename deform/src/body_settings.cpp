@@ -80,6 +80,7 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
   s.rest_positions_m = mesh.points_m;
   s.core_m = mesh.centre_of_mass_m;
   s.core_mass_kg = masses.core_mass_kg;
+  s.anchored_columns = description.anchored_columns;
 
   double mean_kg = 0;
   for (double m : masses.point_mass_kg) {
@@ -244,6 +245,8 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     const Eigen::Vector3d& p = mesh.points_m[i];
     const double area_m2 = vector_area[i].norm();
     Eigen::Vector3d anchor = s.core_m;
+    s.spoke_normal.push_back(area_m2 > 0 ? Eigen::Vector3d(vector_area[i] / area_m2)
+                                         : Eigen::Vector3d::Zero());
     if (area_m2 > 0) {
       const Eigen::Vector3d normal = vector_area[i] / area_m2;
       const double depth_m = normal.dot(p - s.core_m);  // > 0: the core is behind the patch

@@ -8,7 +8,7 @@ namespace deform {
 namespace {
 
 constexpr uint32_t kSnapshotMagic = 0x54534644;  // "DFST"
-constexpr uint32_t kSnapshotVersion = 1;
+constexpr uint32_t kSnapshotVersion = 2;
 
 /// Every field in a fixed order, handed to `sink(pointer, bytes)`; shared by the hash and the snapshot.
 template <class Sink>
@@ -18,6 +18,7 @@ void visitState(const BodyState& s, Sink&& sink) {
   sink(s.edge_rest_m.data(), s.edge_rest_m.size() * sizeof(double));
   sink(s.spoke_rest_m.data(), s.spoke_rest_m.size() * sizeof(double));
   sink(s.bend_rest_m.data(), s.bend_rest_m.size() * sizeof(double));
+  sink(s.column_rest_m.data(), s.column_rest_m.size() * sizeof(Eigen::Vector3d));
   sink(&s.plastic_work_J, sizeof(double));
   sink(&s.time_s, sizeof(double));
   sink(&s.sleep_timer_s, sizeof(double));
@@ -39,6 +40,7 @@ BodyState restState(const BodySettings& settings) {
   s.edge_rest_m = settings.edge_rest_m;
   s.spoke_rest_m = settings.spoke_rest_m;
   s.bend_rest_m = settings.bend_rest_m;
+  s.column_rest_m = settings.rest_positions_m;
   return s;
 }
 
@@ -80,6 +82,7 @@ BodyState restoreState(const BodySettings& settings, std::span<const uint8_t> da
   read(s.edge_rest_m.data(), s.edge_rest_m.size() * sizeof(double));
   read(s.spoke_rest_m.data(), s.spoke_rest_m.size() * sizeof(double));
   read(s.bend_rest_m.data(), s.bend_rest_m.size() * sizeof(double));
+  read(s.column_rest_m.data(), s.column_rest_m.size() * sizeof(Eigen::Vector3d));
   read(&s.plastic_work_J, sizeof(double));
   read(&s.time_s, sizeof(double));
   read(&s.sleep_timer_s, sizeof(double));

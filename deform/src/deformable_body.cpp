@@ -16,7 +16,8 @@ void checkSizes(const BodySettings& settings, const BodyState& state) {
       state.velocities_mps.size() != settings.pointCount() ||
       state.edge_rest_m.size() != settings.edges.size() ||
       state.spoke_rest_m.size() != settings.spokes.size() ||
-      state.bend_rest_m.size() != settings.bends.size())
+      state.bend_rest_m.size() != settings.bends.size() ||
+      state.column_rest_m.size() != settings.spokes.size())
     throw InputError("body state: sizes do not match the body settings");
 }
 
@@ -30,6 +31,7 @@ DeformableBody::DeformableBody(std::shared_ptr<const BodySettings> settings, con
   previous_m_.resize(settings_->pointCount());
   edge_lambda_.resize(settings_->edges.size());
   spoke_lambda_.resize(settings_->spokes.size());
+  column_lambda_.resize(settings_->spokes.size());
   bend_lambda_.resize(settings_->bends.size());
   for (double r : settings_->spoke_rest_m) radius_m_ = std::max(radius_m_, r);
   refreshYieldForces();
@@ -179,7 +181,11 @@ double DeformableBody::carriedElasticEnergy_J() const {
     energy_J += 0.5 * compliance_m_per_N * force_N * force_N;
   };
   for (std::size_t k = 0; k < s.edges.size(); ++k) add(s.edges[k].compliance_m_per_N, edge_lambda_[k]);
-  for (std::size_t k = 0; k < s.spokes.size(); ++k) add(s.spokes[k].compliance_m_per_N, spoke_lambda_[k]);
+  if (s.anchored_columns)
+    for (std::size_t k = 0; k < s.spokes.size(); ++k)
+      add(s.spokes[k].compliance_m_per_N, column_lambda_[k].norm());
+  else
+    for (std::size_t k = 0; k < s.spokes.size(); ++k) add(s.spokes[k].compliance_m_per_N, spoke_lambda_[k]);
   for (std::size_t k = 0; k < s.bends.size(); ++k) add(s.bends[k].compliance_m_per_N, bend_lambda_[k]);
   carried_elastic_J_ = energy_J;
   return energy_J;
@@ -243,11 +249,12 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     Eigen::Vector3d vi = core_velocity_mps_ + relative * decay;
     report.damping_loss_J += 0.5 * m[i] * relative.squaredNorm() * (1.0 - decay * decay);
     to_core_Ns += m[i] * (v[i] - vi);
+    Eigen::Vector3d inertial_mps2{0, 0, 0};
     if (inertial) {
       const Eigen::Vector3d r = x[i] - core;
-      const Eigen::Vector3d a = load_mps2_ - alpha_radps2_.cross(r) -
-                                omega_radps_.cross(omega_radps_.cross(r)) - 2.0 * omega_radps_.cross(vi);
-      vi += (h * scale) * a;
+      inertial_mps2 = scale * (load_mps2_ - alpha_radps2_.cross(r) -
+                               omega_radps_.cross(omega_radps_.cross(r)) - 2.0 * omega_radps_.cross(vi));
+      vi += h * inertial_mps2;
     }
     Eigen::Vector3d travel = h * vi;
     // Numeric guard: a point can end a substep at most 2 d_max from where it began (visual constraint),
@@ -255,6 +262,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     const double cap = 2.0 * settings.max_deviation_m[i];
     const double travel2 = travel.squaredNorm();
     if (travel2 > cap * cap) travel *= cap / std::sqrt(travel2);
+    if (inertial) report.inertial_work_J += m[i] * inertial_mps2.dot(travel - h * core_velocity_mps_);
     x[i] += travel;
   }
   core_velocity_mps_ += w_core * to_core_Ns;
@@ -266,6 +274,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
   std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);
   std::fill(spoke_lambda_.begin(), spoke_lambda_.end(), 0.0);
+  std::fill(column_lambda_.begin(), column_lambda_.end(), Eigen::Vector3d::Zero());
   std::fill(bend_lambda_.begin(), bend_lambda_.end(), 0.0);
   const double inv_h2 = inv_h * inv_h;
   const std::size_t edge_count = settings.edges.size(), spoke_count = settings.spokes.size(),
@@ -281,6 +290,11 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   const YieldForce* bend_yield = bend_yield_N_.data();
   const double h2 = h * h;
   const Eigen::Vector3d* anchors = settings.spoke_anchor_m.data();
+  const bool anchored = settings.anchored_columns;
+  const Eigen::Vector3d* column_rest = state_.column_rest_m.data();
+  const Eigen::Vector3d* normals = settings.spoke_normal.data();
+  const YieldLimits* spoke_limits = settings.spoke_yield.data();
+  const auto& laws = settings.plastic_laws;
   Eigen::Vector3d spoke_twist{0, 0, 0};    // sum of anchor x m_i dx_i: the spokes' moment on the points
   Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
   Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
@@ -307,7 +321,32 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
     // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
     Eigen::Vector3d sweep_pull{0, 0, 0};
-    for (std::size_t k = 0; k < spoke_count; ++k) {
+    if (anchored) {
+      // Crush columns: each holds its point at its rest place, which moves with the core.
+      const Eigen::Vector3d shift = core - settings.core_m;
+      for (std::size_t k = 0; k < spoke_count; ++k) {
+        const SpokeConstraint& c = spokes[k];
+        const uint32_t i = c.point;
+        const Eigen::Vector3d before = x[i];
+        const Eigen::Vector3d& rest = column_rest[k];
+        const double alpha_tilde = c.compliance_m_per_N * inv_h2;
+        if constexpr (kLimited) {
+          const double taken = laws[c.material].hardening * (rest - settings.rest_positions_m[i]).norm();
+          const double to_lambda = h2 / c.compliance_m_per_N;
+          projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k],
+                        [&](const Eigen::Vector3d& push) {
+                          // The column pushes along lambda: its point is displaced along -lambda.
+                          return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
+                        });
+        } else {
+          projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k], nullptr);
+        }
+        const Eigen::Vector3d pull = m[i] * (x[i] - before);
+        sweep_pull += pull;
+        spoke_twist += (rest - settings.core_m).cross(pull);
+      }
+    }
+    for (std::size_t k = 0; k < (anchored ? 0 : spoke_count); ++k) {
       const SpokeConstraint& c = spokes[k];
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];

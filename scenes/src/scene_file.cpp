@@ -148,6 +148,7 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.inertial_scale = object->number("inertial_scale", s.inertial_scale, 0, 10);
     s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
     s.yield_limited = object->boolean("yield_limited", s.yield_limited);
+    s.anchored_columns = object->boolean("anchored_columns", s.anchored_columns);
     object->finish();
   }
   d.settings.coupling = coupling;

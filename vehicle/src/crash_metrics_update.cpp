@@ -40,6 +40,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     dc.plastic_at_impact_J = dc.plastic_before_step_J;  // this step's plastic work counts
     dc.damping_at_impact_J = dc.damping_loss_J;
     dc.contact_work_at_impact_J = dc.contact_work_J;
+    dc.inertial_work_at_impact_J = dc.inertial_work_J;
   }
   // The impact normal: the depth-weighted normals of the contacts with what was hit over the first 10 ms
   // (the very first contact of two rounded fronts can have any normal).
@@ -97,6 +98,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   e.body_energy_J = body.total_J();
   e.elastic_energy_J = dc.body->carriedElasticEnergy_J() - dc.elastic_at_impact_J;
   e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
+  e.inertial_work_J = dc.inertial_work_J - dc.inertial_work_at_impact_J;
   e.dissipated_J = e.damping_loss_J + e.contact_loss_J + e.other_work_J;
   e.balance_error_J = e.kinetic_initial_J - e.kinetic_final_J - e.plastic_work_J - e.damping_loss_J -
                       e.contact_loss_J - e.elastic_energy_J - e.other_work_J;

@@ -132,6 +132,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   const deform::StepReport report = dc.body->step(inputs, dt);
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
+  dc.inertial_work_J += report.inertial_work_J;
   dc.contact_loss_J += report.contact_loss_J;
 
   // Reaction, equal and opposite in this step: the momentum the body handed its core goes to the chassis

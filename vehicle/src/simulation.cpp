@@ -128,6 +128,7 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   deform::BodyDescription description;
   description.material = deformation.material;
   description.max_deviation_m = deformation.max_deviation_m;
+  description.anchored_columns = deformation.anchored_columns;
   const deform::Aabb bounds_m = deform::boundingBox(model.body);
   description.regions = placeMaterialMap(deformation.regions, deformation.material, bounds_m);
   dc->body_settings =

@@ -66,6 +66,8 @@ struct DeformableCar {
   double damping_at_impact_J = 0;
   double contact_work_J = 0;  ///< deform's, since the start [J]
   double contact_work_at_impact_J = 0;
+  double inertial_work_J = 0;  ///< deform's, since the start [J]
+  double inertial_work_at_impact_J = 0;
   double contact_loss_J = 0;  ///< deform's, since the start [J]
   double contact_loss_at_impact_J = 0, contact_loss_before_step_J = 0;
   double elastic_at_impact_J = 0, elastic_before_step_J = 0;  ///< the body's elastic energy [J]

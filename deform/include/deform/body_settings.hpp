@@ -38,6 +38,8 @@ struct BodyDescription {
   /// Bends are made only across hinges folded at least this much from flat (angle between the two
   /// triangles' normals) [rad]: a distance bend across a flatter hinge is ill-conditioned and useless.
   double min_bend_fold_rad = 0.2;
+  /// Crush columns held at a rest place (plasticColumnRest) instead of a rest length along the spoke.
+  bool anchored_columns = false;
   /// Per-point overrides of max_deviation_m, (control point, radius [m]); applied after the regions.
   std::vector<std::pair<uint32_t, double>> max_deviation_overrides;
 };
@@ -65,6 +67,9 @@ struct BodySettings {
   /// of the core on the line through the point along its area normal, so the column runs along the
   /// skin's normal (see createBodySettings); core_m itself where that foot is not inside.
   std::vector<Eigen::Vector3d> spoke_anchor_m;
+  /// Outward unit normal of each spoke's patch of skin, a / |a| (zero where the patch has no area): the
+  /// direction a crush column resists by its full area (columnYield_m).
+  std::vector<Eigen::Vector3d> spoke_normal;
   std::vector<double> bend_rest_m;       ///< original rest lengths L0, one per bend [m]
   std::vector<YieldLimits> edge_yield;   ///< elastic range of each edge (from its material and strip) [m]
   std::vector<YieldLimits> spoke_yield;  ///< elastic range of each spoke (crush column) [m]
@@ -73,6 +78,7 @@ struct BodySettings {
   /// of its triangles' area vectors [m^2].
   std::vector<double> tributary_area_m2;
 
+  bool anchored_columns = false;         ///< BodyDescription::anchored_columns
   std::vector<Material> materials;       ///< [0] = the default, then one per region
   std::vector<PlasticLaw> plastic_laws;  ///< the plasticity part of each material, same indexing
 

@@ -15,11 +15,13 @@ struct BodyState {
   std::vector<Eigen::Vector3d> velocities_mps;  ///< relative to the chassis, from positions [m/s]
   std::vector<double> edge_rest_m;              ///< current rest lengths (plasticity moves them) [m]
   std::vector<double> spoke_rest_m;             ///< [m]
-  std::vector<double> bend_rest_m;              ///< [m]
-  double plastic_work_J = 0;                    ///< work done by plastic flow since the start [J]
-  double time_s = 0;                            ///< simulated time [s]
-  double sleep_timer_s = 0;                     ///< how long the body has been slow and free of contact [s]
-  bool sleeping = false;                        ///< steps do no work
+  /// Where each crush column holds its point now (plastic flow moves it), vehicle frame [m].
+  std::vector<Eigen::Vector3d> column_rest_m;
+  std::vector<double> bend_rest_m;  ///< [m]
+  double plastic_work_J = 0;        ///< work done by plastic flow since the start [J]
+  double time_s = 0;                ///< simulated time [s]
+  double sleep_timer_s = 0;         ///< how long the body has been slow and free of contact [s]
+  bool sleeping = false;            ///< steps do no work
   /// Inertial load when the body fell asleep: specific force [m/s^2], angular velocity [rad/s],
   /// angular acceleration [rad/s^2] (scaled); a change wakes the body.
   Eigen::Vector3d sleep_load_mps2{0, 0, 0}, sleep_angular_velocity_radps{0, 0, 0},

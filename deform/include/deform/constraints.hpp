@@ -9,7 +9,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 namespace deform {
 
@@ -85,6 +87,31 @@ inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w
   x += w * n;
   core_m -= w_core * n;
   return c;
+}
+
+/// A crush column held at its rest place: the zero-length XPBD constraint C = x - target (three rows of
+/// one isotropic compliance, eq. 17, 18) between a control point `x` (inverse mass `w` [1/kg]) and the
+/// place `target` [m] where the column holds it now, which moves with the core (inverse mass `w_core`;
+/// 0 = kinematic). The multiplier `lambda` [N s^2] is a vector; when `lambda_limit` is given it is the
+/// largest |lambda| the column carries in the direction it pushes (a force-limited column). Returns |C|
+/// before the projection [m].
+template <typename Limit>
+inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w, double w_core,
+                            double alpha_tilde, Eigen::Vector3d& lambda, Limit&& lambda_limit) {
+  const double sum = w + w_core;
+  if (sum + alpha_tilde <= 0) return 0;
+  const Eigen::Vector3d c = x - target;
+  Eigen::Vector3d next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
+  if constexpr (!std::is_same_v<std::decay_t<Limit>, std::nullptr_t>) {
+    const double magnitude = next.norm();
+    if (magnitude > 0) {
+      const double limit = lambda_limit(next / magnitude);
+      if (magnitude > limit) next *= limit / magnitude;
+    }
+  }
+  x += w * (next - lambda);
+  lambda = next;
+  return c.norm();
 }
 
 /// Non-penetration of a point with an immovable obstacle, linearised as the half-space
@@ -211,6 +238,41 @@ inline double plasticRestLength(double length_m, double rest_m, double original_
   const double flow = (magnitude - limit) / (1.0 + law.hardening);
   const double moved = elongation > 0 ? rest_m + flow : rest_m - flow;
   return std::clamp(moved, law.min_rest_fraction * original_rest_m, law.max_rest_fraction * original_rest_m);
+}
+
+/// Elastic displacement [m] after which a crush column yields when its point is displaced along the unit
+/// `direction` from its rest place: the column resists a motion by the volume its patch of skin sweeps,
+/// |a . d| per metre of travel (a = |a| n its vector area, n outward), so pressed in (n . d < 0) it
+/// yields after shorten_m |n . d| and pulled out after stretch_m |n . d|, plus what hardening has added
+/// (`taken_m`). A flat obstacle pushing a slanted patch meets the crush strength on the patch's area as
+/// seen along the push, whatever the slope: the summed resistance of a front is its cross-section's.
+inline double columnYield_m(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction,
+                            const YieldLimits& yield, double taken_m) {
+  const double along = normal.dot(direction);
+  return (along < 0 ? yield.shorten_m : yield.stretch_m) * std::abs(along) + taken_m;
+}
+
+/// Return map of a crush column's rest place (the 1D return map of plasticRestLength along the
+/// elastic displacement e = x - rest, with the direction-dependent yield of columnYield_m): a point
+/// displaced past its yield drags its rest place along e by (|e| - e_y) / (1 + H). The crush depth
+/// along the normal, n . (original - rest), stays within [(1 - max_rest_fraction), (1 - min_rest_fraction)]
+/// x `length0_m` (the column's original length). All positions in one frame [m]; returns the new rest.
+inline Eigen::Vector3d plasticColumnRest(const Eigen::Vector3d& x, const Eigen::Vector3d& rest,
+                                         const Eigen::Vector3d& original, const Eigen::Vector3d& normal,
+                                         double length0_m, const YieldLimits& yield, const PlasticLaw& law) {
+  const Eigen::Vector3d elastic = x - rest;
+  const double magnitude = elastic.norm();
+  if (!(magnitude > 0)) return rest;
+  const Eigen::Vector3d direction = elastic / magnitude;
+  const double taken = law.hardening * (rest - original).norm();
+  const double limit = columnYield_m(normal, direction, yield, taken);
+  if (!(magnitude > limit)) return rest;
+  Eigen::Vector3d moved = rest + direction * ((magnitude - limit) / (1.0 + law.hardening));
+  const double depth = normal.dot(original - moved);
+  const double kept =
+      std::clamp(depth, (1.0 - law.max_rest_fraction) * length0_m, (1.0 - law.min_rest_fraction) * length0_m);
+  moved += (depth - kept) * normal;
+  return moved;
 }
 
 }  // namespace deform

@@ -44,6 +44,10 @@ struct StepReport {
   /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the
   /// obstacle's velocity V relative to the chassis) [J]: what the obstacles put into the body.
   double contact_work_J = 0;
+  /// Work the inertial (fictitious) forces of the chassis's motion and gravity did on the points' motion
+  /// relative to the chassis, sum m a . travel over the predictions [J]: what a chassis stopped by
+  /// something else than the body (ODE's rigid contact) puts into the shell.
+  double inertial_work_J = 0;
   /// Kinetic energy the contact corrections took from the points in each obstacle's frame [J]: the
   /// inelastic stop of the motion into it, and friction.
   double contact_loss_J = 0;
@@ -160,6 +164,7 @@ class DeformableBody {
   // Scratch, not state: reset every substep.
   std::vector<Eigen::Vector3d> previous_m_;
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
+  std::vector<Eigen::Vector3d> column_lambda_;
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;

@@ -40,9 +40,9 @@ RunVerdict checkRun(const scenes::SceneRun& run) {
       // Energy not created: every measured term together (plastic work, viscous and contact losses,
       // elastic energy, ODE's work) explains no more than the whole car lost.
       if (e.balance_error_J < -tolerance_J) verdict.fail(car + "the body took more energy than the car lost");
-      // Nor did the body's plastic work and viscous loss exceed the obstacles' work on it (in the
-      // chassis's frame).
-      if (e.plastic_work_J + e.damping_loss_J > e.contact_work_J + tolerance_J)
+      // Nor did the body's plastic work and viscous loss exceed the work done on it in the chassis's
+      // frame: the obstacles' and the inertial forces' (a chassis stopped rigidly throws its shell forward).
+      if (e.plastic_work_J + e.damping_loss_J > e.contact_work_J + e.inertial_work_J + tolerance_J)
         verdict.fail(car + "the body holds more energy than what hit it put in");
     }
     char figures[320];
