@@ -75,6 +75,32 @@ TEST_CASE("a car-to-car crash resumed mid-impact ends bit for bit as the uninter
   checkResume(scene("car_to_car", {"duration_s=0.9"}), 0.1);
 }
 
+TEST_CASE("a run resumed after its collision hull was rebuilt from the dent ends bit for bit", "[state]") {
+  // wall_crash: the car rolls back off the wall and brakes; its hull follows the dent once it is quiet;
+  // then it drives into the wall again (at about 7 km/h near 2 s) with the rebuilt hull.
+  const scenes::SceneConfig config =
+      scene("wall_crash", {"duration_s=2.3", R"(vehicle.drive.keys=[{"t_s": 0.8}, {"t_s": 1.0, "brake": 0.6},
+                     {"t_s": 1.45}, {"t_s": 1.5, "throttle": 1}])"});
+  scenes::SceneRun a(config);
+  a.runToEnd();
+  scenes::SceneRun fresh(config);
+  scenes::SceneRun b(config);
+  b.stepUntil(1.4);
+  const auto& rest = fresh.simulation().world().car(fresh.carId(0)).collisionHull().points_m;
+  const auto& now = b.simulation().world().car(b.carId(0)).collisionHull().points_m;
+  REQUIRE((now.size() != rest.size() || now != rest));  // re-hulled before the save
+  const std::vector<uint8_t> file = b.stateFile();
+  scenes::SceneRun c(config);
+  c.restoreState(file, "rehulled.state");
+  CHECK(c.stateHash() == b.stateHash());
+  c.runToEnd();
+  CHECK(c.stateHash() == a.stateHash());
+  CHECK(withoutTimings(c.summary()) == withoutTimings(a.summary()));
+  // The second impact dented it further.
+  CHECK(a.summary()["residual_crush_m"].get<double>() >
+        b.simulation().metrics(b.carId(0)).residual_crush_m + 0.003);
+}
+
 TEST_CASE("a resumed run with free obstacles ends bit for bit: a tree knocked over, its sleep countdown",
           "[state]") {
   // post_bumps: the sedan at 15 km/h under speed control knocks a small tree over near 1 s.
