@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "commands.hpp"
 #include "render/png_io.hpp"
@@ -105,6 +106,29 @@ std::vector<scenes::Override> overridesOf(const std::vector<std::string>& sets) 
   return overrides;
 }
 
+/// --save-state's time: a number of simulated seconds within the scene (and not before a resumed state).
+double saveTime(const std::vector<std::string>& args, double duration_s, double resumed_s) {
+  std::size_t used = 0;
+  double t_s = 0;
+  try {
+    t_s = std::stod(args[0], &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != args[0].size() || !std::isfinite(t_s))
+    throw deform::InputError("--save-state: T must be a time in seconds (got '" + args[0] + "')");
+  if (t_s < 0 || t_s > duration_s + 1e-9)
+    throw deform::InputError("--save-state: T must be within the scene, 0 to " + std::to_string(duration_s) +
+                             " s (got " + args[0] + ")");
+  const fs::path folder = fs::path(args[1]).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder))
+    throw deform::InputError("--save-state: no folder " + folder.string() + " for " + args[1]);
+  if (t_s < resumed_s - 1e-9)
+    throw deform::InputError("--save-state: T is before the resumed state's time " +
+                             std::to_string(resumed_s) + " s (got " + args[0] + ")");
+  return t_s;
+}
+
 std::string frameName(int frame) {
   char name[32];
   std::snprintf(name, sizeof name, "%05d.png", frame);
@@ -122,6 +146,21 @@ RunResult runScene(const RunOptions& options) {
   // The meshes load (and may be refused) before the output folder is touched: a refused run leaves an
   // earlier run's files as they were.
   scenes::SceneRun run(scene);
+  // A state file to resume from is checked before anything is written, too.
+  if (!options.resume.empty()) run.restoreState(options.resume);
+  const double resumed_s = run.time_s();
+  const bool save = !options.save_state.empty();
+  if (save && options.save_state.size() != 2)
+    throw deform::InputError("--save-state: needs two values, T and FILE");
+  const double save_at_s = save ? saveTime(options.save_state, scene.duration_s, resumed_s) : 0.0;
+  bool saved = false;
+  double saved_s = 0;
+  auto saveNow = [&] {
+    run.stepUntil(save_at_s);
+    run.saveState(options.save_state[1]);
+    saved = true;
+    saved_s = run.time_s();
+  };
   const fs::path out = prepareOutput(options.out.empty() ? "out/" + scene.name : options.out, outputs.frames);
 
   scenes::StageTimes& times = run.times();
@@ -142,7 +181,11 @@ RunResult runScene(const RunOptions& options) {
   ProgressBar progress(scene.name, options.progress);
   RunResult result;
   scenes::StageTimes before = times;
+  // A resumed run's frames (and timeline rows) start at the first frame time not before the state's.
+  const double half_step_s = 0.5 / scene.physics_hz;
   for (int frame = 0; frame < frame_count; ++frame) {
+    if (frame * frame_dt_s < resumed_s - half_step_s) continue;
+    if (save && !saved && frame * frame_dt_s >= save_at_s - half_step_s) saveNow();
     run.stepUntil(frame * frame_dt_s);
     if (renderer) {
       const render::Image image = renderer->frame(run, times);
@@ -164,6 +207,7 @@ RunResult runScene(const RunOptions& options) {
                   frame + 1, frame_count);
     progress.update(static_cast<double>(frame + 1) / frame_count, detail);
   }
+  if (save && !saved) saveNow();
   run.runToEnd();
   if (video) {
     const auto finish_start = Clock::now();
@@ -178,6 +222,9 @@ RunResult runScene(const RunOptions& options) {
   result.summary["fps"] = outputs.fps;
   result.summary["playback_speed"] = outputs.playback_speed;
   if (!result.video_path.empty()) result.summary["video"] = result.video_path;
+  if (!options.resume.empty())
+    result.summary["resumed_from"] = {{"file", options.resume}, {"time_s", resumed_s}};
+  if (save) result.summary["saved_state"] = {{"file", options.save_state[1]}, {"time_s", saved_s}};
   result.out_dir = out.string();
   scenes::writeFileAtomically((out / "timeline.csv").string(), scenes::timelineCsv(columns, rows));
   scenes::writeFileAtomically((out / "summary.json").string(), result.summary.dump(2) + "\n");
@@ -205,6 +252,14 @@ void registerRunCommand(CLI::App& app) {
                   "Override a scene key: --set vehicle.start.speed_kmh=5 (repeatable)")
       ->expected(1)
       ->take_all();
+  run->add_option("--save-state", options->save_state,
+                  "Write the whole state at simulated time T to FILE (the run goes on to the end): "
+                  "--save-state T FILE")
+      ->expected(2)
+      ->type_name("T FILE");
+  run->add_option("--resume", options->resume,
+                  "Continue from a state file of this scene and these --set values (--save-state's)")
+      ->type_name("FILE");
   run->callback([options] {
     const RunResult result = runScene(*options);
     const nlohmann::json& s = result.summary;
@@ -221,6 +276,12 @@ void registerRunCommand(CLI::App& app) {
                 s["timing_ms"]["physics"].get<double>(), s["timing_ms"]["deform"].get<double>(),
                 s["timing_ms"]["embed"].get<double>(), s["timing_ms"]["render"].get<double>(),
                 s["timing_ms"]["total"].get<double>());
+    if (s.contains("resumed_from"))
+      std::printf("resumed from %s at t = %.4f s\n", options->resume.c_str(),
+                  s["resumed_from"]["time_s"].get<double>());
+    if (s.contains("saved_state"))
+      std::printf("saved the state at t = %.4f s to %s\n", s["saved_state"]["time_s"].get<double>(),
+                  options->save_state[1].c_str());
     std::printf("wrote %s/summary.json, %s/timeline.csv", result.out_dir.c_str(), result.out_dir.c_str());
     if (s.contains("frames") && result.frames > 0 && fs::is_directory(fs::path(result.out_dir) / "frames") &&
         !fs::is_empty(fs::path(result.out_dir) / "frames")) {

@@ -19,6 +19,9 @@ struct RunOptions {
   std::optional<double> fps;      ///< frames per second; default the scene's
   std::vector<std::string> sets;  ///< key.path=value overrides
   bool progress = true;           ///< a progress bar when stderr is a terminal
+  /// --save-state T FILE: the two values as given (T in simulated seconds); empty when not asked.
+  std::vector<std::string> save_state;
+  std::string resume;  ///< --resume FILE: continue from this state file; empty: from the start
 };
 
 struct RunResult {

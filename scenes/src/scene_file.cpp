@@ -477,6 +477,11 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
   JsonObject top(document, "", source);
   SceneConfig scene;
   scene.source = source;
+  nlohmann::json physics = document;
+  if (physics.is_object())
+    for (const char* key : {"camera", "outputs", "description", "$schema"}) physics.erase(key);
+  const std::string resolved = physics.dump();
+  scene.settings_hash = vehicle::fnv1a(resolved.data(), resolved.size());
   scene.name = top.string("name", fs::path(source).stem().string());
   scene.description = top.string("description", "");
   top.string("$schema", "");  // editors' schema hint, ignored

@@ -316,7 +316,7 @@ nlohmann::json SceneRun::summary() const {
   }
   out["diverged"] = any_diverged;
   out["cars"] = cars;
-  out["state_hash"] = hashHex(simulation_->stateHash());
+  out["state_hash"] = hashHex(stateHash());
   out["steps"] = steps();
   out["time_s"] = time_s();
   out["physics_hz"] = scene_.physics_hz;

@@ -6,11 +6,13 @@
 #include "ode_support.hpp"
 
 #include <deform/error.hpp>
+#include <vehicle/state_io.hpp>
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 namespace vehicle {
@@ -346,16 +348,103 @@ void Car::applyForces(double dt_s) {
   dBodyAddForce(body_, drag.x(), drag.y(), drag.z());
 }
 
-void Car::appendState(std::vector<double>& out) const {
-  const dReal* p = dBodyGetPosition(body_);
-  const dReal* q = dBodyGetQuaternion(body_);
-  const dReal* v = dBodyGetLinearVel(body_);
-  const dReal* w = dBodyGetAngularVel(body_);
-  out.insert(out.end(),
-             {p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2], steer_rad_});
-  for (const auto& s : wheels_)
-    out.insert(out.end(), {s.tyre.spin_rad_s, s.tyre.longitudinal_deflection_m, s.tyre.lateral_deflection_m,
-                           s.rotation_rad, s.compression_m});
+namespace {
+
+void saveMesh(StateWriter& out, const deform::ControlMesh& mesh) {
+  out.u64(mesh.points_m.size());
+  for (const auto& p : mesh.points_m) out.vec(p);
+  out.u64(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) out.raw(t.data(), sizeof t);
+  out.u64(mesh.edges.size());
+  for (const auto& e : mesh.edges) out.raw(&e, sizeof e);
+  out.vec(mesh.centre_of_mass_m);
+  out.real(mesh.volume_m3);
+  out.u64(mesh.hull_vertex_count);
+  out.u64(mesh.mirror_of.size());
+  out.raw(mesh.mirror_of.data(), mesh.mirror_of.size() * sizeof(uint32_t));
+}
+
+deform::ControlMesh restoreMesh(StateReader& in) {
+  deform::ControlMesh mesh;
+  mesh.points_m.resize(in.count(24));
+  for (auto& p : mesh.points_m) p = in.vec();
+  mesh.triangles.resize(in.count(12));
+  for (auto& t : mesh.triangles) {
+    in.raw(t.data(), sizeof t);
+    for (uint32_t i : t) in.expect(i < mesh.points_m.size(), "collision hull: a corner out of range");
+  }
+  mesh.edges.resize(in.count(sizeof(deform::ControlEdge)));
+  for (auto& e : mesh.edges) in.raw(&e, sizeof e);
+  mesh.centre_of_mass_m = in.vec();
+  mesh.volume_m3 = in.real();
+  mesh.hull_vertex_count = static_cast<std::size_t>(in.u64());
+  mesh.mirror_of.resize(in.count(4));
+  in.raw(mesh.mirror_of.data(), mesh.mirror_of.size() * sizeof(uint32_t));
+  return mesh;
+}
+
+bool sameSurface(const deform::ControlMesh& a, const deform::ControlMesh& b) {
+  return a.points_m.size() == b.points_m.size() && a.triangles == b.triangles &&
+         std::memcmp(a.points_m.data(), b.points_m.data(), a.points_m.size() * sizeof(Eigen::Vector3d)) == 0;
+}
+
+}  // namespace
+
+void Car::saveState(StateWriter& out) const {
+  ode::saveBody(out, body_);
+  out.real(steer_rad_);
+  out.real(input_.throttle);
+  out.real(input_.brake);
+  out.real(input_.steering);
+  out.flag(input_.steer_angle_rad.has_value());
+  out.real(input_.steer_angle_rad.value_or(0.0));
+  out.flag(input_.handbrake);
+  out.flag(input_.reverse);
+  out.u64(wheels_.size());
+  for (const WheelState& s : wheels_) {
+    for (double x :
+         {s.steer_angle_rad, s.rotation_rad, s.tyre.spin_rad_s, s.tyre.longitudinal_deflection_m,
+          s.tyre.lateral_deflection_m, s.compression_m, s.normal_load_N, s.slip_ratio, s.slip_angle_rad})
+      out.real(x);
+    for (bool b : {s.in_contact, s.sliding, s.locked}) out.flag(b);
+    out.vec(s.contact_point_m);
+    out.vec(s.contact_normal);
+    out.vec(s.force_N);
+  }
+  saveMesh(out, hull_);
+}
+
+void Car::restoreState(StateReader& in) {
+  ode::restoreBody(in, body_, "car chassis");
+  steer_rad_ = in.real();
+  input_.throttle = in.real();
+  input_.brake = in.real();
+  input_.steering = in.real();
+  const bool has_angle = in.flag();
+  const double angle = in.real();
+  input_.steer_angle_rad = has_angle ? std::optional<double>(angle) : std::nullopt;
+  input_.handbrake = in.flag();
+  input_.reverse = in.flag();
+  in.expect(in.u64() == wheels_.size(), "wheel count does not match the car");
+  for (WheelState& s : wheels_) {
+    for (double* x :
+         {&s.steer_angle_rad, &s.rotation_rad, &s.tyre.spin_rad_s, &s.tyre.longitudinal_deflection_m,
+          &s.tyre.lateral_deflection_m, &s.compression_m, &s.normal_load_N, &s.slip_ratio, &s.slip_angle_rad})
+      *x = in.real();
+    for (bool* b : {&s.in_contact, &s.sliding, &s.locked}) *b = in.flag();
+    s.contact_point_m = in.vec();
+    s.contact_normal = in.vec();
+    s.force_N = in.vec();
+  }
+  deform::ControlMesh hull = restoreMesh(in);
+  in.expect(hull.points_m.size() >= 4 && hull.triangles.size() >= 4, "collision hull: too few points");
+  if (!sameSurface(hull, hull_)) setCollisionHull(hull);  // re-hulled since the start
+  hull_ = std::move(hull);
+}
+
+void Car::appendGeoms(std::vector<dxGeom*>& out) const {
+  out.push_back(convex_->geom);
+  for (const auto& core : core_) out.push_back(core->geom);
 }
 
 }  // namespace vehicle

@@ -96,7 +96,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   e.contact_loss_J = dc.contact_loss_J - dc.contact_loss_at_impact_J;
   const deform::BodyEnergy body = deform::bodyEnergy(*dc.body_settings, s);
   e.body_energy_J = body.total_J();
-  e.elastic_energy_J = dc.body->carriedElasticEnergy_J() - dc.elastic_at_impact_J;
+  e.elastic_energy_J = dc.elastic_after_step_J - dc.elastic_at_impact_J;
   e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
   e.inertial_work_J = dc.inertial_work_J - dc.inertial_work_at_impact_J;
   e.dissipated_J = e.damping_loss_J + e.contact_loss_J + e.other_work_J;

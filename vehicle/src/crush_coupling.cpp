@@ -128,8 +128,9 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
 
   dc.plastic_before_step_J = state.plastic_work_J;
   dc.contact_loss_before_step_J = dc.contact_loss_J;
-  if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.body->carriedElasticEnergy_J();
+  if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.elastic_after_step_J;
   const deform::StepReport report = dc.body->step(inputs, dt);
+  if (!report.asleep) dc.elastic_after_step_J = dc.body->carriedElasticEnergy_J();
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
   dc.inertial_work_J += report.inertial_work_J;

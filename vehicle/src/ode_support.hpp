@@ -1,6 +1,7 @@
 #pragma once
 // Private ODE helpers of the vehicle library (ODE stays out of the public headers).
 #include <vehicle/pose.hpp>
+#include <vehicle/state_io.hpp>
 
 #include <ode/ode.h>
 
@@ -39,11 +40,34 @@ inline void setGeomPose(dGeomID geom, const Pose& pose) {
   const auto q = toOde(pose.orientation);
   dGeomSetQuaternion(geom, q.data());
 }
+/// Keeps the body's orientation at a quaternion ODE's normalisation leaves unchanged (ode_state.cpp):
+/// ODE normalises every quaternion it is given (dBodySetQuaternion), and the one its step leaves is not
+/// always a fixed point of that, so a saved orientation could not be put back bit for bit. The nearest
+/// fixed point (a few units in the last place away) is taken instead, after every step and at creation.
+void keepOrientationRestorable(dBodyID body);
+
 inline void setBodyPose(dBodyID body, const Pose& pose) {
   dBodySetPosition(body, pose.position_m.x(), pose.position_m.y(), pose.position_m.z());
   const auto q = toOde(pose.orientation);
   dBodySetQuaternion(body, q.data());
+  keepOrientationRestorable(body);
 }
+
+/// A body's motion state (position, quaternion, linear and angular velocity, enabled) to and from saved
+/// bytes, bit for bit. restoreBody throws deform::InputError (through `in`) when the saved quaternion is
+/// not one ODE keeps unchanged (a state not written by saveBody).
+void saveBody(StateWriter& out, dBodyID body);
+void restoreBody(StateReader& in, dBodyID body, const char* what);
+
+/// The order of `space`'s geoms (it decides the order collision pairs, hence contacts, are found in) as
+/// indices into `known` (every geom in the space, in a fixed order), and back: restoreGeomOrder makes
+/// every geom dirty in the saved order (what a step leaves: the moved geoms in front). Throws through
+/// `in` for an order that is not a permutation of `known`.
+/// With `moving_only` (for a hash) only geoms on a body are listed: static geoms never move, so after the
+/// first step they follow every moving one in the order they were made.
+void saveGeomOrder(StateWriter& out, dSpaceID space, const std::vector<dGeomID>& known,
+                   bool moving_only = false);
+void restoreGeomOrder(StateReader& in, dSpaceID space, const std::vector<dGeomID>& known);
 inline Eigen::Vector3d pointVelocity(dBodyID body, const Eigen::Vector3d& p) {
   if (body == nullptr) return Eigen::Vector3d::Zero();
   dVector3 v;

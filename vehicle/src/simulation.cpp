@@ -273,12 +273,9 @@ StepTimings Simulation::lastTimings() const {
 }
 
 uint64_t Simulation::stateHash() const {
-  uint64_t hash = impl_->world.stateHash();
-  for (const auto& dc : impl_->cars) {
-    const uint64_t body = deform::hashState(dc->body->state());
-    hash = fnv1a(&body, sizeof body, hash);
-  }
-  return hash;
+  StateWriter out(true);
+  saveState(out);
+  return fnv1a(out.bytes().data(), out.bytes().size());
 }
 
 }  // namespace vehicle

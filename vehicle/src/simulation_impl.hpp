@@ -73,6 +73,9 @@ struct DeformableCar {
   double elastic_at_impact_J = 0, elastic_before_step_J = 0;  ///< the body's elastic energy [J]
   double step_crush_work_J = 0;  ///< kinetic energy the body's reaction took from the chassis this step [J]
   double step_other_work_J = 0;  ///< work every other force took from it this step [J]
+  /// The body's carried elastic energy after its last step that solved (deform::DeformableBody::
+  /// carriedElasticEnergy_J), kept here so a restored run reports what the uninterrupted one does [J].
+  double elastic_after_step_J = 0;
 };
 
 struct Simulation::Impl {
@@ -130,6 +133,9 @@ struct Simulation::Impl {
   double carKineticEnergy(const DeformableCar& dc) const;
 
   void stepCar(DeformableCar& dc);
+  /// One car's coupling and metrics bookkeeping, and its body's state (simulation_state.cpp).
+  void saveCar(StateWriter& out, const DeformableCar& dc) const;
+  void restoreCar(StateReader& in, DeformableCar& dc);
   void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before, double kinetic_before);
 };
 

@@ -94,6 +94,7 @@ struct ObstacleEntry {
   ObstacleShape local;                      ///< shape in the geom's frame (world for the ground)
   std::unique_ptr<ode::ConvexData> convex;  ///< what a convex geom points into
   double friction = 0.6;
+  int still_steps = 0;  ///< a free body: steps in a row it has rested on something (its sleep countdown)
 };
 
 struct World::Impl {
@@ -113,6 +114,41 @@ struct World::Impl {
   unsigned long random_seed = 0;  ///< ODE's quick-step shuffle seed, owned by this world
   double time_s = 0, accumulator_s = 0;
   uint64_t steps = 0;
+
+  /// Free obstacles sleep after kSleepDelay_s resting on something (they have contact joints) below
+  /// kSleepSpeed_mps and kSleepSpin_rad_s (DESIGN.md section 8: no work for what does not move; a
+  /// standing tree does not creep). A contact with a moving body, a wheel standing on them, addForce or
+  /// applyImpulse wakes them. Called after ODE's step, while its contact joints are still attached.
+  void sleepRestingObstacles() {
+    constexpr double kSleepDelay_s = 0.5, kSleepSpeed_mps = 0.01, kSleepSpin_rad_s = 0.01;
+    const int delay_steps = static_cast<int>(std::ceil(kSleepDelay_s * settings.physics_rate_hz));
+    for (ObstacleEntry& o : obstacles) {
+      if (o.body == nullptr) continue;
+      if (!dBodyIsEnabled(o.body)) {
+        o.still_steps = 0;
+        continue;
+      }
+      const bool still = dBodyGetNumJoints(o.body) > 0 &&
+                         ode::vec(dBodyGetLinearVel(o.body)).norm() <= kSleepSpeed_mps &&
+                         ode::vec(dBodyGetAngularVel(o.body)).norm() <= kSleepSpin_rad_s;
+      o.still_steps = still ? o.still_steps + 1 : 0;
+      if (o.still_steps >= delay_steps) {
+        dBodyDisable(o.body);
+        dBodySetLinearVel(o.body, 0, 0, 0);
+        dBodySetAngularVel(o.body, 0, 0, 0);
+        o.still_steps = 0;
+      }
+    }
+  }
+
+  /// Every geom in the space in a fixed order (cars' hulls and backstops, then obstacles): what the
+  /// saved geom order refers to.
+  std::vector<dGeomID> geoms() const {
+    std::vector<dGeomID> out;
+    for (const auto& c : cars) c->appendGeoms(out);
+    for (const auto& o : obstacles) out.push_back(o.geom);
+    return out;
+  }
 
   double frictionOf(dGeomID geom) const {
     uint32_t kind = 0, index = 0;
@@ -215,7 +251,6 @@ struct World::Impl {
       dBodySetMass(entry.body, &mass);
       dGeomSetBody(entry.geom, entry.body);
       ode::setBodyPose(entry.body, placed);
-      dBodySetAutoDisableFlag(entry.body, 1);
     } else {
       ode::setGeomPose(entry.geom, placed);
     }
@@ -279,14 +314,10 @@ World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
   dWorldSetQuickStepNumIterations(m.world, settings.solver_iterations);
   dWorldSetContactSurfaceLayer(m.world, 0.001);
   dWorldSetContactMaxCorrectingVel(m.world, 5.0);
-  // Free obstacles (not cars) may sleep after half a second below 1 cm/s and 0.01 rad/s (DESIGN.md
-  // section 8: no work for what does not move; a standing tree does not creep). A contact with a moving
-  // body or a wheel standing on them wakes them. Bodies take these defaults when created.
+  // Free obstacles (not cars) sleep after half a second at rest on something (World::step's own
+  // countdown, not ODE's auto-disable, whose countdown ODE neither shows nor takes back, so a saved
+  // state could not hold it).
   dWorldSetAutoDisableFlag(m.world, 0);
-  dWorldSetAutoDisableLinearThreshold(m.world, 0.01);
-  dWorldSetAutoDisableAngularThreshold(m.world, 0.01);
-  dWorldSetAutoDisableTime(m.world, 0.5);
-  dWorldSetAutoDisableSteps(m.world, static_cast<int>(std::ceil(0.5 * settings.physics_rate_hz)));
   if (settings.ground) addGround(0.0, settings.ground_friction);
 }
 
@@ -422,7 +453,6 @@ ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, 
   dGeomSetBody(entry.geom, entry.body);
   ode::setBodyPose(entry.body,
                    {base_m + Eigen::Vector3d(0, 0, 0.5 * height_m), Eigen::Quaterniond::Identity()});
-  dBodySetAutoDisableFlag(entry.body, 1);
   entry.local.type = ShapeType::Cylinder;
   entry.local.radius_m = radius_m;
   entry.local.a_m = {0, 0, -0.5 * height_m};
@@ -570,6 +600,12 @@ void World::step() {
   dRandSetSeed(m.random_seed);
   dWorldQuickStep(m.world, dt);
   m.random_seed = dRandGetSeed();
+  // Orientations ODE's normalisation keeps, so a saved state is put back bit for bit (ode_support.hpp).
+  for (auto& c : m.cars)
+    if (dBodyIsEnabled(c->body_)) ode::keepOrientationRestorable(c->body_);
+  for (auto& o : m.obstacles)
+    if (o.body && dBodyIsEnabled(o.body)) ode::keepOrientationRestorable(o.body);
+  m.sleepRestingObstacles();
   for (std::size_t i = 0; i < m.contacts.size(); ++i)
     m.contacts[i].force_on_a_N = m.feedback_sign[i] * ode::vec(m.feedback[i].f1);
   dJointGroupEmpty(m.contact_joints);
@@ -626,19 +662,62 @@ std::vector<CarContact> World::carContacts(CarId id) const {
   return out;
 }
 
-uint64_t World::stateHash() const {
-  std::vector<double> values;
-  for (const auto& c : impl_->cars) c->appendState(values);
-  for (const auto& o : impl_->obstacles) {
-    if (!o.body) continue;
-    const dReal* p = dBodyGetPosition(o.body);
-    const dReal* q = dBodyGetQuaternion(o.body);
-    const dReal* v = dBodyGetLinearVel(o.body);
-    const dReal* w = dBodyGetAngularVel(o.body);
-    values.insert(values.end(),
-                  {p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2]});
+void World::saveState(StateWriter& out) const {
+  const Impl& m = *impl_;
+  out.u64(m.cars.size());
+  if (!out.forHash()) out.u64(m.obstacles.size());
+  out.real(m.time_s);
+  out.real(m.accumulator_s);
+  out.u64(m.steps);
+  out.u64(static_cast<uint64_t>(m.random_seed));
+  for (std::size_t i = 0; i < m.cars.size(); ++i) {
+    out.real(m.crush_allowance_m[i]);
+    out.flag(m.crush_coupled[i] != 0);
+    m.cars[i]->saveState(out);
   }
-  return fnv1a(values.data(), values.size() * sizeof(double));
+  for (const auto& o : m.obstacles)
+    if (o.body) {
+      ode::saveBody(out, o.body);
+      out.u64(static_cast<uint64_t>(o.still_steps));
+    }
+  ode::saveGeomOrder(out, m.space, m.geoms(), out.forHash());
+}
+
+void World::restoreState(StateReader& in) {
+  Impl& m = *impl_;
+  in.expect(in.u64() == m.cars.size(), "car count does not match the scene");
+  in.expect(in.u64() == m.obstacles.size(), "obstacle count does not match the scene");
+  m.time_s = in.real();
+  m.accumulator_s = in.real();
+  m.steps = in.u64();
+  m.random_seed = static_cast<unsigned long>(in.u64());
+  for (std::size_t i = 0; i < m.cars.size(); ++i) {
+    const double allowance_m = in.real();
+    const bool coupled = in.flag();
+    in.expect(std::isfinite(allowance_m) && allowance_m >= 0, "crush allowance out of range");
+    in.expect(coupled == (m.crush_coupled[i] != 0), "crush coupling does not match the scene");
+    m.cars[i]->restoreState(in);
+    // The shrunk-hull backstop follows the (possibly re-hulled) hull and the stroke left, as after a
+    // re-hull; rigid parts never change.
+    if (allowance_m > 0) setCrushAllowance(static_cast<CarId>(i), allowance_m);
+  }
+  for (auto& o : m.obstacles)
+    if (o.body) {
+      ode::restoreBody(in, o.body, "obstacle");
+      const uint64_t still = in.u64();
+      in.expect(still <= INT32_MAX, "obstacle sleep countdown out of range");
+      o.still_steps = static_cast<int>(still);
+    }
+  m.contacts.clear();
+  m.feedback.clear();
+  m.feedback_sign.clear();
+  ode::restoreGeomOrder(in, m.space, m.geoms());
+}
+
+uint64_t World::stateHash() const {
+  StateWriter out(true);
+  saveState(out);
+  return fnv1a(out.bytes().data(), out.bytes().size());
 }
 
 }  // namespace vehicle

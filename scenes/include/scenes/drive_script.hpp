@@ -14,6 +14,9 @@ class DrivePlayer {
   /// Inputs at time t_s for a car going at forward speed speed_mps, after a step of dt_s (the speed
   /// controller integrates over it).
   vehicle::DriverInput inputs(double t_s, double speed_mps, double dt_s);
+  /// The speed controller: the player's only state (the script is fixed), for saving a run.
+  const vehicle::SpeedController& controller() const { return controller_; }
+  vehicle::SpeedController& controller() { return controller_; }
 
  private:
   DriveScript script_;

@@ -136,6 +136,9 @@ struct SceneConfig {
   std::vector<ObstacleConfig> obstacles;
   CameraConfig camera;
   OutputConfig outputs;
+  /// FNV-1a of the scene's resolved keys (the file with every --set applied) less camera, outputs and
+  /// description, which do not change the simulation: what a saved state must have been saved with.
+  uint64_t settings_hash = 0;
 };
 
 }  // namespace scenes

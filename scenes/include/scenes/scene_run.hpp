@@ -11,7 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,23 @@ class SceneRun {
   /// What diverged first and when, e.g. "sedan: control point 12 at t = 0.532 s"; empty if nothing did.
   std::string divergence() const;
 
+  /// FNV-1a (64 bit) over everything that decides the rest of the run: the simulation's state
+  /// (vehicle::Simulation::saveState: time, step counter, every body, coupling and metric) and every
+  /// drive script's speed controller and advance()'s frame clock. What summary()'s state_hash shows.
+  uint64_t stateHash() const;
+  /// The state file of the run now (scenes/README.md, "Save and resume"): magic, format version,
+  /// payload length and checksum, then the scene's name and settings_hash and the state stateHash covers.
+  std::vector<uint8_t> stateFile() const;
+  /// Writes stateFile() to `path` atomically. Throws std::runtime_error naming the path when it cannot.
+  void saveState(const std::string& path) const;
+  /// Continues from `bytes`, a state file of this scene with these settings (`name` names it in
+  /// messages). Throws deform::InputError "<name>: ..." for a file that is truncated, corrupted, of a newer
+  /// format version, of another scene or of other settings; nothing is changed then. (A file that passes
+  /// those checks but does not fit the run throws too and leaves the run unusable.)
+  void restoreState(std::span<const uint8_t> bytes, const std::string& name);
+  /// restoreState from the file at `path` (InputError naming it when it cannot be read).
+  void restoreState(const std::string& path);
+
   /// The run's figures: car 0's metrics at the top level (impact_speed_mps, ..., energy, tunnelled,
   /// diverged of any car), every car's under "cars", state_hash (16 hex digits), steps, timing_ms.
   nlohmann::json summary() const;
@@ -103,6 +122,8 @@ class SceneRun {
   void internalStep();
   /// Throws deform::InputError naming both when a car overlaps an obstacle or another car at the start.
   void refuseStartingOverlaps() const;
+  /// The state as bytes (state_file.cpp): for the state file, or (for_hash) what stateHash covers.
+  std::vector<uint8_t> stateBytes(bool for_hash) const;
 
   std::unique_ptr<vehicle::Simulation> simulation_;
   std::vector<Car> cars_;

@@ -21,6 +21,9 @@ struct dxWorld;
 
 namespace vehicle {
 
+class StateWriter;
+class StateReader;
+
 /// What a wheel is doing, for the renderer (turning, steering, riding wheels) and for metrics.
 struct WheelState {
   double steer_angle_rad = 0;                ///< angle about the chassis Z axis, + turns left [rad]
@@ -103,7 +106,14 @@ class Car {
   void applyForces(double dt_s);
   /// The ODE body's mass and inertia (about its origin, the centre of mass).
   void setChassisMass(double mass_kg, const Eigen::Matrix3d& inertia_kg_m2);
-  void appendState(std::vector<double>& out) const;
+  /// Everything a step changes (World::saveState): the chassis body's motion, steering, driver input,
+  /// every wheel's state and the collision hull (replaced when the dent is re-hulled).
+  void saveState(StateWriter& out) const;
+  /// Puts back what saveState wrote; the backstop geoms are the World's to rebuild. Throws
+  /// deform::InputError (through `in`) for bytes that do not fit this car.
+  void restoreState(StateReader& in);
+  /// The car's geoms in the space, in a fixed order: the hull, then the backstop's.
+  void appendGeoms(std::vector<dxGeom*>& out) const;
   /// The crush backstop (World::setCrushAllowance): a second convex geom on the chassis, the collision
   /// hull with every point moved `allowance_m` towards the centre of mass (then re-hulled), tagged with
   /// `geom_data`; none for an allowance of 0.

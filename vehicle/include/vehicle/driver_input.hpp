@@ -33,6 +33,9 @@ class SpeedController {
   /// `dt_s`. Steering and handbrake of the result are left at rest; copy them from elsewhere.
   DriverInput update(double target_mps, double speed_mps, double dt_s);
   void reset() { integral_m_ = 0; }
+  /// The accumulated speed error: the controller's whole state, for saving and restoring a run [m].
+  double integral_m() const { return integral_m_; }
+  void setIntegral_m(double integral_m) { integral_m_ = integral_m; }
 
  private:
   SpeedControllerSettings settings_;

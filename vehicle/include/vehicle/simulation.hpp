@@ -215,7 +215,16 @@ class Simulation {
 
   CrashMetrics metrics(CarId car) const;
   StepTimings lastTimings() const;
-  uint64_t stateHash() const;  ///< world + every deformable body
+  /// Everything that decides the future, between steps: the world's (World::saveState) and per
+  /// deformable car its body's state (deform::saveState), the crush coupling's memory (hull dirty, quiet
+  /// steps, the chassis's velocities after the last step) and the crash metrics with their accumulators
+  /// (so a resumed run reports what the uninterrupted one does).
+  void saveState(StateWriter& out) const;
+  /// Puts back what saveState wrote into a simulation built the same way. Throws deform::InputError
+  /// (through `in`) for bytes that do not fit it.
+  void restoreState(StateReader& in);
+  /// FNV-1a (64 bit) over saveState's bytes.
+  uint64_t stateHash() const;
 
  private:
   struct Impl;

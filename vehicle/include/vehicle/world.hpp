@@ -6,6 +6,7 @@
 #include <vehicle/car.hpp>
 #include <vehicle/obstacle_shape.hpp>
 #include <vehicle/pose.hpp>
+#include <vehicle/state_io.hpp>
 #include <vehicle/vehicle_settings.hpp>
 
 #include <deform/builtin_meshes.hpp>
@@ -193,8 +194,18 @@ class World {
   /// The last step's contacts of car `id`, turned into its vehicle frame at the pose it has now.
   std::vector<CarContact> carContacts(CarId id) const;
 
-  /// FNV-1a (64 bit) over the bytes of every body's position, orientation, linear and angular velocity
-  /// and every wheel's state, in creation order.
+  /// Everything that decides the world's future, bit for bit: time, step count, fixed-step accumulator,
+  /// ODE's shuffle seed; every car's chassis motion, steering, input, wheels, collision hull and crush
+  /// backstop; every free obstacle's motion and sleep countdown; whether each body is asleep; the order of
+  /// the collision space's geoms (it orders the contacts). Taken between steps (the last step's contacts
+  /// are not kept: the next step finds its own).
+  void saveState(StateWriter& out) const;
+  /// Puts back what saveState wrote into a world built the same way (same cars, obstacles, settings).
+  /// Throws deform::InputError (through `in`) for bytes that do not fit it.
+  void restoreState(StateReader& in);
+
+  /// FNV-1a (64 bit) over saveState's bytes less the obstacle count and where static geoms sit in the
+  /// collision order (StateWriter::forHash): obstacles that never take part change no hash.
   uint64_t stateHash() const;
 
  private:

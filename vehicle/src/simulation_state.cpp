@@ -1,0 +1,145 @@
+// A Simulation's state saved and put back bit for bit (simulation.hpp): the world, and per deformable
+// car its body, its coupling's memory and its metrics with their accumulators.
+#include "simulation_impl.hpp"
+
+#include <deform/body_state.hpp>
+
+#include <cmath>
+
+namespace vehicle {
+namespace {
+
+void saveEntity(StateWriter& out, const EntityRef& e) {
+  out.flag(e.kind == EntityRef::Kind::Car);
+  out.u64(e.index);
+}
+
+EntityRef restoreEntity(StateReader& in) {
+  EntityRef e;
+  e.kind = in.flag() ? EntityRef::Kind::Car : EntityRef::Kind::Obstacle;
+  const uint64_t index = in.u64();
+  in.expect(index <= UINT32_MAX, "entity index out of range");
+  e.index = static_cast<uint32_t>(index);
+  return e;
+}
+
+/// Every member of CrashMetrics, in one order for both directions (`io` is a writer or a reader).
+template <class Io, class Metrics>
+void visitMetrics(Io& io, Metrics& m) {
+  auto real = [&io](auto& x) {
+    if constexpr (std::is_same_v<Io, StateWriter>)
+      io.real(x);
+    else
+      x = io.real();
+  };
+  auto flag = [&io](auto& x) {
+    if constexpr (std::is_same_v<Io, StateWriter>)
+      io.flag(x);
+    else
+      x = io.flag();
+  };
+  real(m.impact_speed_mps);
+  real(m.rebound_speed_mps);
+  real(m.restitution);
+  real(m.residual_crush_m);
+  real(m.max_residual_crush_m);
+  real(m.max_dent_m);
+  real(m.max_dynamic_crush_m);
+  auto& e = m.energy;
+  for (auto* x : {&e.kinetic_initial_J, &e.plastic_work_J, &e.damping_loss_J, &e.contact_loss_J,
+                  &e.elastic_energy_J, &e.contact_work_J, &e.dissipated_J, &e.kinetic_final_J,
+                  &e.crush_work_J, &e.other_work_J, &e.body_energy_J, &e.balance_error_J})
+    real(*x);
+  real(m.max_deviation_m);
+  real(m.max_penetration_m);
+  flag(m.tunnelled);
+  flag(m.diverged);
+  real(m.diverged_at_s);
+  if constexpr (std::is_same_v<Io, StateWriter>)
+    io.text(m.diverged_what);
+  else
+    m.diverged_what = io.text();
+  flag(m.impacted);
+}
+
+}  // namespace
+
+void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const {
+  out.u64(dc.id);
+  out.blob(deform::saveState(dc.body->state()));
+  out.flag(dc.hull_dirty);
+  out.u64(static_cast<uint64_t>(dc.quiet_steps));
+  out.vec(dc.previous_velocity_mps);
+  out.vec(dc.previous_omega_radps);
+  const CrashMetrics& metrics = dc.metrics;
+  visitMetrics(out, metrics);
+  out.vec(dc.impact_normal);
+  out.vec(dc.impact_direction_vehicle);
+  saveEntity(out, dc.impact_other);
+  out.real(dc.impact_separation_m);
+  out.vec(dc.impact_relative_velocity_mps);
+  out.vec(dc.impact_com_m);
+  out.vec(dc.impact_other_m);
+  out.vec(dc.impact_normal_sum);
+  out.u64(static_cast<uint64_t>(dc.impact_steps));
+  out.flag(dc.in_contact);
+  for (double x :
+       {dc.plastic_at_impact_J, dc.plastic_before_step_J, dc.body_energy_at_impact_J, dc.damping_loss_J,
+        dc.damping_at_impact_J, dc.contact_work_J, dc.contact_work_at_impact_J, dc.contact_loss_J,
+        dc.contact_loss_at_impact_J, dc.contact_loss_before_step_J, dc.elastic_at_impact_J,
+        dc.elastic_before_step_J, dc.step_crush_work_J, dc.step_other_work_J, dc.elastic_after_step_J})
+    out.real(x);
+}
+
+void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
+  in.expect(in.u64() == dc.id, "deformable car order does not match the scene");
+  const std::span<const uint8_t> body = in.blob();
+  try {
+    dc.body->setState(deform::restoreState(*dc.body_settings, body));
+  } catch (const deform::InputError& e) {
+    in.fail(std::string("deformable body: ") + e.what());
+  }
+  dc.hull_dirty = in.flag();
+  const uint64_t quiet = in.u64();
+  in.expect(quiet <= INT32_MAX, "quiet steps out of range");
+  dc.quiet_steps = static_cast<int>(quiet);
+  dc.previous_velocity_mps = in.vec();
+  dc.previous_omega_radps = in.vec();
+  visitMetrics(in, dc.metrics);
+  dc.impact_normal = in.vec();
+  dc.impact_direction_vehicle = in.vec();
+  dc.impact_other = restoreEntity(in);
+  dc.impact_separation_m = in.real();
+  dc.impact_relative_velocity_mps = in.vec();
+  dc.impact_com_m = in.vec();
+  dc.impact_other_m = in.vec();
+  dc.impact_normal_sum = in.vec();
+  const uint64_t impact_steps = in.u64();
+  in.expect(impact_steps <= INT32_MAX, "impact steps out of range");
+  dc.impact_steps = static_cast<int>(impact_steps);
+  dc.in_contact = in.flag();
+  for (double* x :
+       {&dc.plastic_at_impact_J, &dc.plastic_before_step_J, &dc.body_energy_at_impact_J, &dc.damping_loss_J,
+        &dc.damping_at_impact_J, &dc.contact_work_J, &dc.contact_work_at_impact_J, &dc.contact_loss_J,
+        &dc.contact_loss_at_impact_J, &dc.contact_loss_before_step_J, &dc.elastic_at_impact_J,
+        &dc.elastic_before_step_J, &dc.step_crush_work_J, &dc.step_other_work_J, &dc.elastic_after_step_J})
+    *x = in.real();
+  // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
+  dc.touching.clear();
+  dc.shapes.clear();
+  dc.world_shape = ObstacleShape{};
+}
+
+void Simulation::saveState(StateWriter& out) const {
+  impl_->world.saveState(out);
+  out.u64(impl_->cars.size());
+  for (const auto& dc : impl_->cars) impl_->saveCar(out, *dc);
+}
+
+void Simulation::restoreState(StateReader& in) {
+  impl_->world.restoreState(in);
+  in.expect(in.u64() == impl_->cars.size(), "deformable car count does not match the scene");
+  for (auto& dc : impl_->cars) impl_->restoreCar(in, *dc);
+}
+
+}  // namespace vehicle
