@@ -47,8 +47,8 @@ void visitMetrics(Io& io, Metrics& m) {
   real(m.max_dynamic_crush_m);
   auto& e = m.energy;
   for (auto* x : {&e.kinetic_initial_J, &e.plastic_work_J, &e.damping_loss_J, &e.contact_loss_J,
-                  &e.elastic_energy_J, &e.contact_work_J, &e.dissipated_J, &e.kinetic_final_J,
-                  &e.crush_work_J, &e.other_work_J, &e.body_energy_J, &e.balance_error_J})
+                  &e.elastic_energy_J, &e.contact_work_J, &e.inertial_work_J, &e.dissipated_J,
+                  &e.kinetic_final_J, &e.crush_work_J, &e.other_work_J, &e.body_energy_J, &e.balance_error_J})
     real(*x);
   real(m.max_deviation_m);
   real(m.max_penetration_m);
@@ -87,7 +87,8 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
        {dc.plastic_at_impact_J, dc.plastic_before_step_J, dc.body_energy_at_impact_J, dc.damping_loss_J,
         dc.damping_at_impact_J, dc.contact_work_J, dc.contact_work_at_impact_J, dc.contact_loss_J,
         dc.contact_loss_at_impact_J, dc.contact_loss_before_step_J, dc.elastic_at_impact_J,
-        dc.elastic_before_step_J, dc.step_crush_work_J, dc.step_other_work_J, dc.elastic_after_step_J})
+        dc.elastic_before_step_J, dc.step_crush_work_J, dc.step_other_work_J, dc.elastic_after_step_J,
+        dc.inertial_work_J, dc.inertial_work_at_impact_J})
     out.real(x);
 }
 
@@ -122,7 +123,8 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
        {&dc.plastic_at_impact_J, &dc.plastic_before_step_J, &dc.body_energy_at_impact_J, &dc.damping_loss_J,
         &dc.damping_at_impact_J, &dc.contact_work_J, &dc.contact_work_at_impact_J, &dc.contact_loss_J,
         &dc.contact_loss_at_impact_J, &dc.contact_loss_before_step_J, &dc.elastic_at_impact_J,
-        &dc.elastic_before_step_J, &dc.step_crush_work_J, &dc.step_other_work_J, &dc.elastic_after_step_J})
+        &dc.elastic_before_step_J, &dc.step_crush_work_J, &dc.step_other_work_J, &dc.elastic_after_step_J,
+        &dc.inertial_work_J, &dc.inertial_work_at_impact_J})
     *x = in.real();
   // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
   dc.touching.clear();
