@@ -46,9 +46,9 @@ for target in scene mesh_obj mesh_stl mesh_ply mesh_gltf mesh_glb; do
   # catches one that never returns; -rss_limit_mb: over 2 GB is one too.
   if "$bin/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$dir/artifacts/" "$dir/corpus" "${inputs[@]}" >"$dir/log.txt" 2>&1; then
-    stats=$(grep -E "stat::number_of_executed_runs" "$dir/log.txt" | awk '{print $2}')
+    runs=$(awk '/stat::number_of_executed_units/ {print $2}' "$dir/log.txt")
     corpus=$(find "$dir/corpus" -type f | wc -l)
-    echo "fuzz: $target passed: $stats runs in $(( $(date +%s) - started )) s, corpus $corpus inputs"
+    echo "fuzz: $target passed: ${runs:-?} inputs run in $(( $(date +%s) - started )) s, corpus $corpus inputs"
   else
     echo "fuzz: $target FAILED; the end of $dir/log.txt:" >&2
     tail -n 40 "$dir/log.txt" >&2
