@@ -1,10 +1,16 @@
 # The two user commands. Each installs what is missing, configures, builds and does its job.
+# CI (.ci/run) also runs the sanitizer and fuzz jobs below (README, "CI jobs").
 BUILD_DIR ?= build
+ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
+FUZZ_SECONDS ?= 60
 DEFORM_TEST_MESHES ?=
 export DEFORM_TEST_MESHES
+# Any sanitizer report fails: ASan and LSan stop with an error, UBSan cannot recover (compile flag).
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp
 
-.PHONY: all setup build demo test format clean
+.PHONY: all setup build demo test build-asan test-asan fuzz format clean
 
 all: build
 
@@ -21,8 +27,22 @@ demo: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
+# The suite built with clang, AddressSanitizer and UndefinedBehaviorSanitizer (and libFuzzer's coverage,
+# so that the fuzz targets come from the same build), run with zero reports allowed.
+build-asan: setup
+	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+	  -DCMAKE_CXX_COMPILER=clang++ -DDEFORM_FUZZ=ON >/dev/null
+	@$(SANITIZER_ENV) cmake --build $(ASAN_DIR) -j $(JOBS)
+
+test-asan: build-asan
+	@cd $(ASAN_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+# Every libFuzzer target for FUZZ_SECONDS each (tools/fuzz.sh): no crash, leak, or input over 1 s of CPU.
+fuzz: build-asan
+	@$(SANITIZER_ENV) bash tools/fuzz.sh $(ASAN_DIR) $(FUZZ_SECONDS)
+
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	@rm -rf $(BUILD_DIR)
+	@rm -rf $(BUILD_DIR) $(ASAN_DIR)

@@ -72,6 +72,28 @@ Axis colladaUpAxis(const std::string& path) {
   return Axis::PosY;
 }
 
+/// Refuses, before assimp sees it, a PLY file (by content, whatever its extension: assimp also picks the
+/// PLY reader by the "ply" signature) whose header has no end_header line within its first MiB: assimp
+/// 5.2.4 reads such a file forever (found by fuzz_mesh_ply, tests/fuzz/regressions/mesh_ply/;
+/// docs/STABILITY.md).
+void checkPlyHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 20, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const bool ply =
+      head.size() >= 4 && head.compare(0, 3, "ply") == 0 && std::isspace(static_cast<unsigned char>(head[3]));
+  if (!ply) return;
+  for (std::size_t line = 0; line < head.size();) {
+    const std::size_t end = head.find('\n', line);
+    if (trimmed(head.substr(line, end == std::string::npos ? std::string::npos : end - line)) == "end_header")
+      return;
+    if (end == std::string::npos) break;
+    line = end + 1;
+  }
+  throw InputError(path + ": cannot read as a mesh (a PLY header without an end_header line)");
+}
+
 /// An FBX axis from its index (0 X, 1 Y, 2 Z) and sign.
 std::optional<Axis> fbxAxis(int index, int sign) {
   switch (index) {
@@ -257,6 +279,7 @@ VehicleModel loadFile(const std::string& path, const ImportOptions& options, Imp
   const std::string ext = lowerExtension(path);
   report.format = formatName(ext);
 
+  checkPlyHeader(path);
   Assimp::Importer importer;
   // Keep a DAE file's own axes (assimp would rotate Z_UP to Y_UP through the root node); its <unit> stays.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

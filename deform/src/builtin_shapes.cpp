@@ -104,7 +104,8 @@ namespace {
 
 /// Surface vertices of an a x b x c cell lattice (the box grid without its interior).
 std::size_t boxVertexCount(const std::array<std::size_t, 3>& cells) {
-  const auto [a, b, c] = cells;
+  // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture those in lambdas.
+  const std::size_t a = cells[0], b = cells[1], c = cells[2];
   return (a + 1) * (b + 1) * (c + 1) - (a - 1) * (b - 1) * (c - 1);
 }
 
@@ -137,7 +138,8 @@ Mesh makeBox(const Eigen::Vector3d& size_m, std::size_t target_vertices) {
     return std::llabs(v - static_cast<long long>(target_vertices));
   };
   if (miss(finer) < miss(cells)) cells = finer;
-  const auto [a, b, c] = cells;
+  // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture those in lambdas.
+  const std::size_t a = cells[0], b = cells[1], c = cells[2];
 
   // Vertex order: bottom layer (full grid), rings of the side walls, top layer (full grid).
   const std::size_t ring = 2 * (a + b), bottom = (a + 1) * (b + 1);

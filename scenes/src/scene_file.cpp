@@ -457,7 +457,16 @@ json parseRefusingDuplicates(const std::string& text, const std::string& source)
     }
     return true;
   };
-  return json::parse(text, check);
+  try {
+    return json::parse(text, check);
+  } catch (const json::out_of_range& e) {
+    // A number beyond a double ("1e999"): nlohmann throws out_of_range (406), not parse_error, so without
+    // this it escaped as an internal failure (exit 1; tests/fuzz/regressions/scene/).
+    const std::string what = e.what();
+    const std::size_t quote = what.find('\'');
+    const std::string number = quote == std::string::npos ? what : what.substr(quote);
+    throw deform::InputError(source + ": a number too large for a double: " + number);
+  }
 }
 
 std::string resolveScenePath(const std::string& name_or_path) {
@@ -514,7 +523,11 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
 
 SceneConfig loadScene(const std::string& name_or_path, const std::vector<Override>& overrides) {
   const std::string path = resolveScenePath(name_or_path);
-  const std::string text = readText(path);
+  return parseSceneText(readText(path), path, overrides, fs::path(path).parent_path().string());
+}
+
+SceneConfig parseSceneText(const std::string& text, const std::string& path,
+                           const std::vector<Override>& overrides, const std::string& base_dir) {
   json document;
   try {
     document = parseRefusingDuplicates(text, path);
@@ -523,7 +536,7 @@ SceneConfig loadScene(const std::string& name_or_path, const std::vector<Overrid
   }
   for (const Override& o : overrides) applyOverride(document, o);
   try {
-    return parseScene(document, path, fs::path(path).parent_path().string());
+    return parseScene(document, path, base_dir);
   } catch (const deform::InputError& e) {
     // Name the override when the refused key is one that --set gave.
     const std::string message = e.what();

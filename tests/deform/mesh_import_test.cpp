@@ -376,6 +376,13 @@ TEST_CASE("loadVehicleModel refuses bad input with one message naming the file a
                           "end_header\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"),
                 {}, "non-finite");
   }
+  SECTION("a PLY header without end_header (assimp 5.2.4 reads it forever; found by fuzz_mesh_ply)") {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+    expectError(dir.write("no_end_header.ply", header), {}, "without an end_header line");
+    expectError(dir.write("ply_content.stl", header + "element face 4\npropert2 3\n"), {},
+                "without an end_header line");
+  }
   SECTION("zero extent") {
     expectError(dir.write("point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n"), {}, "zero extent");
   }

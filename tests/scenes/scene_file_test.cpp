@@ -130,6 +130,14 @@ TEST_CASE("a scene that is not valid JSON is refused naming file, line and colum
   fs::remove(path);
 }
 
+TEST_CASE("a number too large for a double is refused naming the file or the --set key", "[scenes]") {
+  // Found writing fuzz_scene: nlohmann throws out_of_range for 1e999, which escaped as an internal failure.
+  CHECK_THROWS_WITH(scenes::parseSceneText(R"({"duration_s": 1e999})", "big.json", {}, "."),
+                    Catch::Contains("big.json: a number too large for a double: '1e999'"));
+  CHECK_THROWS_WITH(scenes::loadScene("wall_crash", {scenes::parseOverride("duration_s=-2e400")}),
+                    Catch::Contains("--set duration_s: a number too large for a double: '-2e400'"));
+}
+
 TEST_CASE("a key given twice is refused naming the file and the key's path", "[scenes]") {
   const fs::path path = fs::temp_directory_path() / "scenes_test_duplicate.json";
   const std::string head =

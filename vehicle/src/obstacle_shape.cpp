@@ -19,7 +19,7 @@ Eigen::Vector3d supportPoint(const ObstacleShape& shape, const Eigen::Vector3d& 
   const Eigen::Vector3d d = unitOr(direction, Eigen::Vector3d::UnitX());
   switch (shape.type) {
     case ShapeType::HalfSpace:
-      assert(!"a half-space has no support point");
+      assert(false && "a half-space has no support point");
       return Eigen::Vector3d::Zero();
     case ShapeType::Sphere:
       return shape.centre_m + shape.radius_m * d;

@@ -47,4 +47,10 @@ SceneConfig parseScene(const nlohmann::json& document, const std::string& source
 /// each override in order, parseScene, and check that every mesh file exists.
 SceneConfig loadScene(const std::string& name_or_path, const std::vector<Override>& overrides = {});
 
+/// What loadScene does once it has the file's text: parse it (syntax errors and duplicate keys name
+/// `path`, line and column), applyOverride for each override in order, parseScene against `base_dir`.
+/// The scene fuzz target (tests/fuzz/) enters here.
+SceneConfig parseSceneText(const std::string& text, const std::string& path,
+                           const std::vector<Override>& overrides, const std::string& base_dir);
+
 }  // namespace scenes

@@ -19,8 +19,7 @@ namespace {
 StepInputs roughInputs(const BodySettings& settings, int step) {
   StepInputs in;
   if (step % 5 == 0) in.impulses.push_back({0, Eigen::Vector3d(-2e4, 1e3, 5e3)});
-  in.contacts.emplace_back(std::in_place_type<SphereShape>, settings.core_m + Eigen::Vector3d(1.3, 0, 0),
-                           0.5);
+  in.contacts.emplace_back(SphereShape{settings.core_m + Eigen::Vector3d(1.3, 0, 0), 0.5});
   in.chassis.gravity_mps2 = {0, 0, -9.81};
   in.chassis.acceleration_mps2 = {-80.0, 0, 0};
   in.chassis.angular_velocity_radps = {0, 0, 6.0};
