@@ -1,5 +1,5 @@
 # The two user commands. Each installs what is missing, configures, builds and does its job.
-# CI (.ci/run) also runs the sanitizer and fuzz jobs below (README, "CI jobs").
+# The sanitizer and fuzz jobs below run on their own; CI (.ci/run) runs `make test` (README, "CI jobs").
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
