@@ -10,7 +10,7 @@ namespace deform {
 namespace {
 
 constexpr uint32_t kDamageMagic = 0x4d444644;  // "DFDM"
-constexpr uint32_t kDamageVersion = 1;
+constexpr uint32_t kDamageVersion = 2;         // 2: the crush columns' rest places
 
 int64_t quantise(double delta_m) {
   return std::llround(delta_m / kDamageQuantum_m);
@@ -41,6 +41,37 @@ void readRestDeltas(bytes::Reader& in, std::vector<double>& rest, const std::vec
   }
 }
 
+/// Sparse quantised deltas of 3-vectors (control points, the crush columns' rest places) from `original`.
+void putPlaceDeltas(std::vector<uint8_t>& out, const std::vector<Eigen::Vector3d>& place,
+                    const std::vector<Eigen::Vector3d>& original) {
+  std::vector<std::pair<uint64_t, Eigen::Matrix<int64_t, 3, 1>>> moved;
+  for (std::size_t i = 0; i < place.size(); ++i) {
+    const Eigen::Vector3d delta = place[i] - original[i];
+    const Eigen::Matrix<int64_t, 3, 1> q(quantise(delta.x()), quantise(delta.y()), quantise(delta.z()));
+    if (q.any()) moved.emplace_back(i, q);
+  }
+  bytes::putVarint(out, moved.size());
+  uint64_t next = 0;
+  for (const auto& [i, q] : moved) {
+    bytes::putVarint(out, i - next);
+    for (int a = 0; a < 3; ++a) bytes::putSigned(out, q[a]);
+    next = i + 1;
+  }
+}
+
+void readPlaceDeltas(bytes::Reader& in, std::vector<Eigen::Vector3d>& place,
+                     const std::vector<Eigen::Vector3d>& original) {
+  const uint64_t count = in.varint();
+  uint64_t next = 0;
+  for (uint64_t j = 0; j < count; ++j) {
+    const uint64_t i = next + in.varint();
+    if (i >= place.size()) throw InputError("damage record: point index out of range");
+    for (int a = 0; a < 3; ++a)
+      place[i][a] = original[i][a] + static_cast<double>(in.signedVarint()) * kDamageQuantum_m;
+    next = i + 1;
+  }
+}
+
 }  // namespace
 
 std::vector<uint8_t> encodeDamage(const BodySettings& settings, const BodyState& state) {
@@ -53,22 +84,11 @@ std::vector<uint8_t> encodeDamage(const BodySettings& settings, const BodyState&
   bytes::putVarint(out, settings.bends.size());
   bytes::putDouble(out, state.plastic_work_J);
 
-  std::vector<std::pair<uint64_t, Eigen::Matrix<int64_t, 3, 1>>> moved;
-  for (std::size_t i = 0; i < settings.pointCount(); ++i) {
-    const Eigen::Vector3d delta = state.positions_m[i] - settings.rest_positions_m[i];
-    const Eigen::Matrix<int64_t, 3, 1> q(quantise(delta.x()), quantise(delta.y()), quantise(delta.z()));
-    if (q.any()) moved.emplace_back(i, q);
-  }
-  bytes::putVarint(out, moved.size());
-  uint64_t next = 0;
-  for (const auto& [i, q] : moved) {
-    bytes::putVarint(out, i - next);
-    for (int a = 0; a < 3; ++a) bytes::putSigned(out, q[a]);
-    next = i + 1;
-  }
+  putPlaceDeltas(out, state.positions_m, settings.rest_positions_m);
   putRestDeltas(out, state.edge_rest_m, settings.edge_rest_m);
   putRestDeltas(out, state.spoke_rest_m, settings.spoke_rest_m);
   putRestDeltas(out, state.bend_rest_m, settings.bend_rest_m);
+  putPlaceDeltas(out, state.column_rest_m, settings.rest_positions_m);
   return out;
 }
 
@@ -81,19 +101,11 @@ BodyState decodeDamage(const BodySettings& settings, std::span<const uint8_t> da
     throw InputError("damage record: point or constraint counts do not match the body");
   BodyState state = restState(settings);
   state.plastic_work_J = in.real();
-  const uint64_t count = in.varint();
-  uint64_t next = 0;
-  for (uint64_t j = 0; j < count; ++j) {
-    const uint64_t i = next + in.varint();
-    if (i >= settings.pointCount()) throw InputError("damage record: point index out of range");
-    for (int a = 0; a < 3; ++a)
-      state.positions_m[i][a] =
-          settings.rest_positions_m[i][a] + static_cast<double>(in.signedVarint()) * kDamageQuantum_m;
-    next = i + 1;
-  }
+  readPlaceDeltas(in, state.positions_m, settings.rest_positions_m);
   readRestDeltas(in, state.edge_rest_m, settings.edge_rest_m);
   readRestDeltas(in, state.spoke_rest_m, settings.spoke_rest_m);
   readRestDeltas(in, state.bend_rest_m, settings.bend_rest_m);
+  readPlaceDeltas(in, state.column_rest_m, settings.rest_positions_m);
   if (!in.done()) throw InputError("damage record: trailing bytes");
   return state;
 }
