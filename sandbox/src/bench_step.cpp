@@ -33,6 +33,8 @@ struct BenchStepFlags {
   std::size_t warmup = 20;  ///< steps before measuring (the wall has crushed the front by then)
   double dt_s = 1.0 / 60;
   double mass_kg = 1500;
+  bool anchored_columns = false;  ///< deform::BodyDescription::anchored_columns
+  bool yield_limited = false;     ///< deform::SolverParams::yield_limited
   bool json = false;
 };
 
@@ -56,14 +58,17 @@ void runBenchStep(const BenchStepFlags& f) {
   for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
   const deform::ControlMesh mesh = deform::buildControlMesh(points, f.control_points, f.mesh.c_str());
   const deform::MassSplit masses = deform::distributeMass(mesh, f.mass_kg);
-  const auto settings = std::make_shared<const deform::BodySettings>(
-      deform::createBodySettings(mesh, masses, deform::BodyDescription{}));
+  deform::BodyDescription description;
+  description.anchored_columns = f.anchored_columns;
+  const auto settings =
+      std::make_shared<const deform::BodySettings>(deform::createBodySettings(mesh, masses, description));
   StepCostOptions options;
   options.substeps = f.substeps;
   options.iterations = f.iterations;
   options.warmup = f.warmup;
   options.steps = f.steps;
   options.dt_s = f.dt_s;
+  options.yield_limited = f.yield_limited;
   const StepCost cost = measureStepCost(settings, options);
   const std::size_t constraints = settings->constraintCount();
   const uint32_t contact_points = cost.contact_points;
@@ -80,6 +85,8 @@ void runBenchStep(const BenchStepFlags& f) {
   r["bends"] = settings->bends.size();
   r["substeps"] = f.substeps;
   r["iterations"] = f.iterations;
+  r["anchored_columns"] = f.anchored_columns;
+  r["yield_limited"] = f.yield_limited;
   r["dt_s"] = f.dt_s;
   r["steps"] = f.steps;
   r["contact_points"] = contact_points;
@@ -119,6 +126,10 @@ void registerBenchStepCommand(CLI::App& bench) {
   step->add_option("--warmup", flags->warmup, "Steps before measuring")->capture_default_str();
   step->add_option("--dt", flags->dt_s, "Time step [s]")->capture_default_str();
   step->add_option("--mass-kg", flags->mass_kg, "Vehicle mass [kg]")->capture_default_str();
+  step->add_flag("--anchored-columns", flags->anchored_columns,
+                 "Crush columns held at a rest place (scene key anchored_columns)");
+  step->add_flag("--yield-limited", flags->yield_limited,
+                 "Force-limited constraints (scene key yield_limited)");
   step->add_flag("--json", flags->json, "Print one JSON object");
   step->callback([flags] { runBenchStep(*flags); });
 }

@@ -29,6 +29,7 @@ StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& sett
   deform::SolverParams params;
   params.substeps = options.substeps;
   params.iterations = options.iterations;
+  params.yield_limited = options.yield_limited;
   params.sleep_delay_s = -1;  // measure work, not sleep
   deform::DeformableBody body(settings, params);
 

@@ -22,6 +22,7 @@ struct StepCostOptions {
   std::size_t warmup = 20;  ///< steps before measuring (the wall has crushed the front by then)
   std::size_t steps = 200;  ///< measured steps (the median is reported)
   double dt_s = 1.0 / 60;
+  bool yield_limited = false;  ///< deform::SolverParams::yield_limited
 };
 
 /// Steps a body of `settings` (sleep off) under the wall and times it.
