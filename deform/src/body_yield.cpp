@@ -120,26 +120,29 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
          c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
   }
   const Eigen::Vector3d shift = core_m - settings.core_m;
-  for (std::size_t k = 0; settings.anchored_columns && k < settings.spokes.size(); ++k) {
-    const SpokeConstraint& c = settings.spokes[k];
-    Eigen::Vector3d& rest = state_.column_rest_m[k];
-    const Eigen::Vector3d local = x[c.point] - shift;
-    const Eigen::Vector3d moved =
-        plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
-                          settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
-    if (moved == rest) continue;
-    if (c.compliance_m_per_N > 0) {
-      const double force_N =
-          std::min(column_lambda_[k].norm() * inv_h2, (local - moved).norm() / c.compliance_m_per_N);
-      work_J += force_N * (moved - rest).norm();
+  if (settings.anchored_columns) {
+    for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
+      const SpokeConstraint& c = settings.spokes[k];
+      Eigen::Vector3d& rest = state_.column_rest_m[k];
+      const Eigen::Vector3d local = x[c.point] - shift;
+      const Eigen::Vector3d moved =
+          plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
+                            settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
+      if (moved == rest) continue;
+      if (c.compliance_m_per_N > 0) {
+        const double force_N =
+            std::min(column_lambda_[k].norm() * inv_h2, (local - moved).norm() / c.compliance_m_per_N);
+        work_J += force_N * (moved - rest).norm();
+      }
+      rest = moved;
     }
-    rest = moved;
-  }
-  for (std::size_t k = 0; !settings.anchored_columns && k < settings.spokes.size(); ++k) {
-    const SpokeConstraint& c = settings.spokes[k];
-    flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
-         settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
-         spoke_lambda_[k], spoke_yield_N_[k]);
+  } else {
+    for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
+      const SpokeConstraint& c = settings.spokes[k];
+      flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
+           settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
+           spoke_lambda_[k], spoke_yield_N_[k]);
+    }
   }
   for (std::size_t k = 0; k < settings.bends.size(); ++k) {
     const BendConstraint& c = settings.bends[k];

@@ -295,7 +295,9 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   const Eigen::Vector3d* normals = settings.spoke_normal.data();
   const YieldLimits* spoke_limits = settings.spoke_yield.data();
   const auto& laws = settings.plastic_laws;
-  Eigen::Vector3d spoke_twist{0, 0, 0};    // sum of anchor x m_i dx_i: the spokes' moment on the points
+  // sum of lever x m_i dx_i, the lever a point on the line the correction acts along (a spoke's anchor, a
+  // column's rest place): the spokes' moment on the points
+  Eigen::Vector3d spoke_twist{0, 0, 0};
   Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
   Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
   // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
@@ -321,7 +323,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
     // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
     Eigen::Vector3d sweep_pull{0, 0, 0};
-    if (anchored) {
+    if (anchored) {  // crush columns, or spokes below
       // Crush columns: each holds its point at its rest place, which moves with the core.
       const Eigen::Vector3d shift = core - settings.core_m;
       for (std::size_t k = 0; k < spoke_count; ++k) {
@@ -331,11 +333,18 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
         const Eigen::Vector3d& rest = column_rest[k];
         const double alpha_tilde = c.compliance_m_per_N * inv_h2;
         if constexpr (kLimited) {
-          const double taken = laws[c.material].hardening * (rest - settings.rest_positions_m[i]).norm();
+          const Eigen::Vector3d& original = settings.rest_positions_m[i];
+          const PlasticLaw& law = laws[c.material];
+          const double taken = law.hardening * (rest - original).norm();
           const double to_lambda = h2 / c.compliance_m_per_N;
+          // Crushed to its clamp, a column can flow no further in: it bottoms out, rigidly elastic (as
+          // yieldForce for a spoke).
+          const bool bottomed = normals[k].dot(original - rest) >=
+                                (1.0 - law.min_rest_fraction) * settings.spoke_rest_m[k] * (1 - 1e-12);
           projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k],
                         [&](const Eigen::Vector3d& push) {
                           // The column pushes along lambda: its point is displaced along -lambda.
+                          if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
                           return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
                         });
         } else {
@@ -346,7 +355,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
         spoke_twist += (rest - settings.core_m).cross(pull);
       }
     }
-    for (std::size_t k = 0; k < (anchored ? 0 : spoke_count); ++k) {
+    for (std::size_t k = 0; !anchored && k < spoke_count; ++k) {
       const SpokeConstraint& c = spokes[k];
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];

@@ -1,8 +1,7 @@
 // Crush columns held at a rest place (BodyDescription::anchored_columns): a column resists a motion of its
 // point by the volume its patch of skin sweeps, |a . d| per metre of travel, whatever the slope of the
 // patch. The return map and the yield are pure functions (constraints.hpp), checked here against
-// hand-worked values; the body-level test checks that a slanted patch pressed by a flat plate flows at the
-// crush strength on its area as seen along the push.
+// hand-worked values, and on a 60-point hull built by createBodySettings (its columns' areas and yields).
 #include "fixtures.hpp"
 
 #include <catch2/catch.hpp>
@@ -53,7 +52,7 @@ TEST_CASE("Crush column: the return map flows along the displacement and stops a
   CHECK(normal.dot(original - deep) == Approx(0.75));
 }
 
-TEST_CASE("Crush column: a flat plate meets the crush strength on the area seen along its push, at any slope",
+TEST_CASE("Crush column: every point's yield force along a tilted push is crush strength x area x cos(tilt)",
           "[dynamics]") {
   // Every control point of a 60-point hull, pushed at a tilt from its patch normal: the force at which its
   // column flows (the solver's multiplier bound with force-limited constraints, and the return map's
