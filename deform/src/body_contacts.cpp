@@ -92,13 +92,12 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     const ContactShape& shape = shapes[k];
     const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
     if (surface) touched_.assign(x.size(), 0);
-    Eigen::Vector3d obstacle_moved_m = Eigen::Vector3d::Zero();
-    if (k < inputs.contact_velocity_mps.size()) obstacle_moved_m = h * inputs.contact_velocity_mps[k];
     for (uint32_t i = 0; i < x.size(); ++i)
       if (penetration(shape, x[i], p, params_.contact_margin_m)) {
         // Only a point that moved further than its depth relative to the obstacle this substep can have
         // come in by another face than the nearest (the entry face is at most that travel away).
-        const Eigen::Vector3d start_m = previous_m_[i] + obstacle_moved_m;
+        const Eigen::Vector3d start_m =
+            previous_m_[i] + h * obstacleVelocity(inputs, static_cast<uint32_t>(k), previous_m_[i]);
         if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
           enteredAt(shape, start_m, x[i], p);
         contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
@@ -176,6 +175,15 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
   return found;
 }
 
+Eigen::Vector3d DeformableBody::obstacleVelocity(const StepInputs& inputs, uint32_t shape,
+                                                 const Eigen::Vector3d& p_m) const {
+  Eigen::Vector3d velocity_mps{0, 0, 0};
+  if (shape < inputs.contact_velocity_mps.size()) velocity_mps = inputs.contact_velocity_mps[shape];
+  if (shape < inputs.contact_angular_velocity_radps.size())
+    velocity_mps += inputs.contact_angular_velocity_radps[shape].cross(p_m - settings_->core_m);
+  return velocity_mps;
+}
+
 double DeformableBody::contactLoss(const StepInputs& inputs, double h) const {
   // Each correction's impulse J = m dx / h against the point's mean velocity over the substep relative
   // to the obstacle, (v0 + v1) / 2 - V: its work, exactly its share of the change of 1/2 m |v - V|^2.
@@ -184,9 +192,7 @@ double DeformableBody::contactLoss(const StepInputs& inputs, double h) const {
   const auto& x = state_.positions_m;
   const auto& v = state_.velocities_mps;  // still v0, the substep's start
   auto work = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& moved) {
-    const Eigen::Vector3d obstacle = shape < inputs.contact_velocity_mps.size()
-                                         ? inputs.contact_velocity_mps[shape]
-                                         : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d obstacle = obstacleVelocity(inputs, shape, previous_m_[i]);
     const Eigen::Vector3d mean = 0.5 * (v[i] + (x[i] - previous_m_[i]) / h) - obstacle;
     return (m[i] / h) * moved.dot(mean);
   };

@@ -60,8 +60,7 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     if (largest == nullptr) break;
     const Eigen::Vector3d move = largest_m * largest->normal;
     const uint32_t shape = largest->shape;
-    Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();
-    if (shape < inputs.contact_velocity_mps.size()) obstacle = inputs.contact_velocity_mps[shape];
+    const Eigen::Vector3d obstacle = obstacleVelocity(inputs, shape, core_start);
     const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;
     const Eigen::Vector3d impulse_Ns = move / (core_inverse_mass_per_kg_ * h);
     // Its loss: the impulse against the core's mean velocity relative to the obstacle (as contactLoss).

@@ -99,6 +99,9 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   for (std::size_t k = 0; k < inputs.contact_velocity_mps.size(); ++k)
     if (!inputs.contact_velocity_mps[k].allFinite())
       throw InputError("contact_velocity_mps[" + std::to_string(k) + "]: not finite");
+  for (std::size_t k = 0; k < inputs.contact_angular_velocity_radps.size(); ++k)
+    if (!inputs.contact_angular_velocity_radps[k].allFinite())
+      throw InputError("contact_angular_velocity_radps[" + std::to_string(k) + "]: not finite");
   if (std::isnan(inputs.core_mass_kg) || !(inputs.core_mass_kg > 0))
     throw InputError("core_mass_kg: must be > 0 (infinite: a kinematic core)");
   if (!std::isfinite(inputs.contact_friction) || inputs.contact_friction < 0)
@@ -306,8 +309,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
     contact_push += m[i] * dx;
     report.contact_impulse_per_obstacle_Ns[shape] += (m[i] * inv_h) * dx;
-    if (shape < inputs.contact_velocity_mps.size())
-      contact_work_x_h += m[i] * dx.dot(inputs.contact_velocity_mps[shape] - core_velocity_mps_);
+    contact_work_x_h += m[i] * dx.dot(obstacleVelocity(inputs, shape, previous_m_[i]) - core_velocity_mps_);
   };
   // The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
   // unlimited sweep reads no yield arrays, so it costs what it did before they existed.
@@ -383,7 +385,10 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
       sweepConstraints(std::false_type{});
     for (ContactPoint& c : contacts_) {
       const Eigen::Vector3d before = x[c.point];
-      projectContact(x[c.point], previous_m_[c.point], c.normal, c.surface_m, inputs.contact_friction);
+      // Friction holds the point to the obstacle's surface, which moves (and turns) in this frame.
+      const Eigen::Vector3d& start = previous_m_[c.point];
+      projectContact(x[c.point], start + h * obstacleVelocity(inputs, c.shape, start), c.normal, c.surface_m,
+                     inputs.contact_friction);
       c.moved_m += x[c.point] - before;
       movedBy(c.shape, c.point, x[c.point] - before);
     }

@@ -42,15 +42,22 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
         std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
       dc.touching.push_back(c.other);
 
-  // The obstacles where they are at the end of the step (vehicle frame), with their velocities relative to
-  // the chassis: deform moves them along those through its substeps.
+  // The obstacles where they are at the end of the step (vehicle frame), with their motion relative to
+  // the chassis (the velocity of their point at the core, and their turn): deform moves them along it
+  // through its substeps, and its friction holds a point to their surface. A wall seen from a car that
+  // pitches turns the other way.
+  const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
+  const EntityRef self{EntityRef::Kind::Car, dc.id};
   deform::StepInputs inputs;
   inputs.contact_friction = dc.settings.contact_friction;
   dc.shapes.clear();
   for (const EntityRef& other : dc.touching) {
     const ObstacleShape world_shape = worldShapeOf(other);
     const ObstacleShape local = transformShape(world_shape, frame);
-    const Eigen::Vector3d relative_mps = to_vehicle * (velocityOf(other) - car.velocity_mps());
+    const Eigen::Vector3d relative_mps =
+        to_vehicle * (velocityOf(other, core_world_m) - velocityOf(self, core_world_m));
+    const Eigen::Vector3d relative_radps =
+        to_vehicle * (angularVelocityOf(other) - car.angularVelocity_rad_s());
     // Sweep away from the car, against the contact normals. A point can be as deep as the deepest contact
     // at the start of the step plus the step's closing travel; twice that keeps the near face the nearest.
     Eigen::Vector3d normal{0, 0, 0};
@@ -75,6 +82,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     // corner thinner than the point spacing pushes the faces and edges it meets, at any level of detail.
     dc.shapes.add(local, sweep, down, post, true);
     inputs.contact_velocity_mps.push_back(relative_mps);
+    inputs.contact_angular_velocity_radps.push_back(relative_radps);
   }
   inputs.contacts = dc.shapes.shapes();
   inputs.surface_contact = dc.shapes.surfaceFlags();

@@ -103,6 +103,16 @@ struct Simulation::Impl {
     if (e.kind == EntityRef::Kind::Car) return world.car(e.index).velocity_mps();
     return Eigen::Vector3d::Zero();  // obstacles: static or slow next to a car
   }
+  /// The velocity of `e`'s material at the world point `p_m` [m/s] (velocityOf plus its turn).
+  Eigen::Vector3d velocityOf(EntityRef e, const Eigen::Vector3d& p_m) const {
+    if (e.kind != EntityRef::Kind::Car) return velocityOf(e);
+    const Car& car = world.car(e.index);
+    return car.velocity_mps() + car.angularVelocity_rad_s().cross(p_m - car.bodyPose().position_m);
+  }
+  Eigen::Vector3d angularVelocityOf(EntityRef e) const {  ///< (world) [rad/s]
+    if (e.kind == EntityRef::Kind::Car) return world.car(e.index).angularVelocity_rad_s();
+    return Eigen::Vector3d::Zero();
+  }
 
   /// The shape of `e` in the world; a deformable car as its control points now.
   ObstacleShape worldShapeOf(EntityRef e) const {

@@ -117,9 +117,10 @@ inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, d
 /// Non-penetration of a point with an immovable obstacle, linearised as the half-space
 /// n . (x - surface) >= 0 for the substep (Mueller et al. 2007, "Position Based Dynamics": collision
 /// constraints generated once per step, solved with the others), with Coulomb friction at position
-/// level (Macklin et al. 2014, "Unified Particle Physics", eq. 24): the tangential travel since the
-/// substep began, `x_start` to `x`, is cancelled while within friction x the depth corrected, else
-/// shortened by that much. Moves `x` onto the surface when inside; returns the depth corrected [m].
+/// level (Macklin et al. 2014, "Unified Particle Physics", eq. 24): the tangential travel relative to the
+/// obstacle's surface, `x_start` to `x` (`x_start`: where the point began the substep, carried along with
+/// the surface), is cancelled while within friction x the depth corrected, else shortened by that much. Moves
+/// `x` onto the surface when inside; returns the depth corrected [m].
 inline double projectContact(Eigen::Vector3d& x, const Eigen::Vector3d& x_start,
                              const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m,
                              double friction) {

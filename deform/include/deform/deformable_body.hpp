@@ -155,6 +155,9 @@ class DeformableBody {
   /// Kinetic energy the contact corrections took from the points this substep, in each obstacle's frame
   /// (call before the velocities are updated) [J].
   double contactLoss(const StepInputs& inputs, double h) const;
+  /// The velocity of obstacle `shape`'s surface at `p_m`, relative to the vehicle frame (StepInputs).
+  Eigen::Vector3d obstacleVelocity(const StepInputs& inputs, uint32_t shape,
+                                   const Eigen::Vector3d& p_m) const;
   /// Appends the face contacts of one obstacle; returns how many.
   uint32_t findFaceContacts(const ContactShape& shape, uint32_t shape_index);
 

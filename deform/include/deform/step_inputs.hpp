@@ -28,10 +28,17 @@ struct ChassisMotion {
 struct StepInputs {
   /// Obstacles this step, where they are at the END of the step (vehicle frame).
   std::vector<ContactShape> contacts;
-  /// Per entry of `contacts` (missing entries: at rest): the obstacle's velocity relative to the chassis
-  /// over the step, in the vehicle frame [m/s]. deform moves each obstacle along it through its substeps
-  /// (translation), so one that closes v dt during the step pushes the points at v, not all at once.
+  /// Per entry of `contacts` (missing entries: at rest): the velocity relative to the vehicle frame of the
+  /// obstacle's point at the body's core (BodySettings::core_m), in the vehicle frame [m/s]. deform moves
+  /// each obstacle along it through its substeps (translation), so one that closes v dt during the step
+  /// pushes the points at v, not all at once.
   std::vector<Eigen::Vector3d> contact_velocity_mps;
+  /// Per entry of `contacts` (missing entries: 0): the obstacle's angular velocity relative to the vehicle
+  /// frame [rad/s] (a wall seen from a pitching car turns at minus the car's rate). The obstacle's surface
+  /// at p then moves at contact_velocity + w x (p - core_m): friction holds a point to that motion and the
+  /// contact work and loss are taken against it. The obstacle's placement in the substeps stays a
+  /// translation.
+  std::vector<Eigen::Vector3d> contact_angular_velocity_radps;
   /// Per entry of `contacts` (missing entries: 0): when set, the obstacle is also met between the control
   /// points: points of the control surface (triangle centroids, edge midpoints) found inside it push the
   /// corners around them out (face contacts). For a broad body such as another car, whose flat front can
