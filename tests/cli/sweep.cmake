@@ -38,3 +38,9 @@ add_test(NAME cli.sweep_plan_refused_writes_nothing COMMAND test ! -e ${SWEEP_OU
 set_tests_properties(cli.sweep_plan_refused_writes_nothing PROPERTIES DEPENDS
                      "cli.sweep_plan_unknown_key;cli.sweep_plan_bad_vary;cli.sweep_plan_tradeoff_two_cars")
 
+# The real scheduler: a one-node Slurm started for the test (tools/sweep/local-slurm.sh), a small trade-off
+# plan as a 4-task job array and the dependent merge (tools/sweep/submit.sh). Skipped, visibly, when Slurm
+# cannot be started (not root, packages missing).
+add_test(NAME cli.sweep_slurm_cluster COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_slurm.sh ${SANDBOX}
+         ${SWEEP_OUT}/slurm)
+set_tests_properties(cli.sweep_slurm_cluster PROPERTIES LABELS cluster SKIP_RETURN_CODE 77 TIMEOUT 600)
