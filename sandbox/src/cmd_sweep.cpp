@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "converge/converge.hpp"
+#include "grid/grid_sweep.hpp"
 #include "stress/stress_sweep.hpp"
 #include "sweep/custom_sweep.hpp"
 #include "sweep/sweep_plan.hpp"
@@ -27,6 +28,8 @@ struct PlanFlags {
   ConvergeOptions converge;
   std::vector<std::string> stress_groups;
   bool stress_quick = false;
+  bool grid_quick = false;
+  unsigned grid_threads = 0;
 };
 
 struct RunFlags {
@@ -86,6 +89,13 @@ void registerPlan(CLI::App& sweep) {
   stress->add_option("--group", flags->stress_groups, "Only these groups (repeatable)");
   addPlanOut(stress, *flags);
   stress->callback([flags] { writePlan(planStress(flags->stress_groups, flags->stress_quick), flags->out); });
+
+  auto* grid =
+      plan->add_subcommand("grid", "The benchmark grid, one case per resolution (bench grid's options)");
+  grid->add_flag("--quick", flags->grid_quick, "10k and 100k vertices, 8, 60 and 1000 points");
+  grid->add_option("--threads", flags->grid_threads, "Threads of the embedding pass (0 = all cores)");
+  addPlanOut(grid, *flags);
+  grid->callback([flags] { writePlan(planGrid(flags->grid_quick, flags->grid_threads), flags->out); });
 
   auto* custom = plan->add_subcommand("custom", "Scenes crossed with a grid of scene keys, crash measured");
   custom->add_option("--scene", flags->custom.scenes, "Scene to sweep (repeatable)")->required();

@@ -26,13 +26,21 @@ add_test(NAME cli.sweep_resume COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_re
          ${SWEEP_OUT}/resume)
 add_test(NAME cli.sweep_tradeoff_shards COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh ${SANDBOX}
          ${SWEEP_OUT}/tradeoff_shards shards)
-add_test(NAME cli.sweep_tradeoff_parallel COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh ${SANDBOX}
-         ${SWEEP_OUT}/tradeoff_parallel parallel)
-set_tests_properties(cli.sweep_tradeoff_parallel PROPERTIES SKIP_RETURN_CODE 77)
+# The parallel and Slurm tests compare with the one-process result the shards test made.
+set(TRADEOFF_ONE ONE_PROCESS_DIR=${SWEEP_OUT}/tradeoff_shards/one)
+set_tests_properties(cli.sweep_tradeoff_shards PROPERTIES FIXTURES_SETUP tradeoff_one_process)
+add_test(NAME cli.sweep_tradeoff_parallel COMMAND env ${TRADEOFF_ONE} bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh
+         ${SANDBOX} ${SWEEP_OUT}/tradeoff_parallel parallel)
+set_tests_properties(cli.sweep_tradeoff_parallel PROPERTIES SKIP_RETURN_CODE 77 FIXTURES_REQUIRED tradeoff_one_process)
 add_test(NAME cli.sweep_converge COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_kind.sh ${SANDBOX}
          ${SWEEP_OUT}/converge converge converge.csv --quick --set duration_s=0.4)
 add_test(NAME cli.sweep_stress COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_kind.sh ${SANDBOX}
          ${SWEEP_OUT}/stress stress stress.csv --quick --group meshes --group impact_speed)
+# The grid is mostly timings; its sharded merge is compared with cli.bench_grid_quick's output.
+add_test(NAME cli.sweep_grid COMMAND env ONE_PROCESS_DIR=${RUN_OUT}/grid bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_kind.sh
+         ${SANDBOX} ${SWEEP_OUT}/grid grid grid.csv --quick)
+set_tests_properties(cli.bench_grid_quick PROPERTIES FIXTURES_SETUP grid_one_process)
+set_tests_properties(cli.sweep_grid PROPERTIES FIXTURES_REQUIRED grid_one_process)
 # Nothing written by a refused plan.
 add_test(NAME cli.sweep_plan_refused_writes_nothing COMMAND test ! -e ${SWEEP_OUT}/never.jsonl)
 set_tests_properties(cli.sweep_plan_refused_writes_nothing PROPERTIES DEPENDS
@@ -41,6 +49,7 @@ set_tests_properties(cli.sweep_plan_refused_writes_nothing PROPERTIES DEPENDS
 # The real scheduler: a one-node Slurm started for the test (tools/sweep/local-slurm.sh), a small trade-off
 # plan as a 4-task job array and the dependent merge (tools/sweep/submit.sh). Skipped, visibly, when Slurm
 # cannot be started (not root, packages missing).
-add_test(NAME cli.sweep_slurm_cluster COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_slurm.sh ${SANDBOX}
-         ${SWEEP_OUT}/slurm)
-set_tests_properties(cli.sweep_slurm_cluster PROPERTIES LABELS cluster SKIP_RETURN_CODE 77 TIMEOUT 600)
+add_test(NAME cli.sweep_slurm_cluster COMMAND env ${TRADEOFF_ONE} bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_slurm.sh
+         ${SANDBOX} ${SWEEP_OUT}/slurm)
+set_tests_properties(cli.sweep_slurm_cluster PROPERTIES LABELS cluster SKIP_RETURN_CODE 77 TIMEOUT 600
+                     FIXTURES_REQUIRED tradeoff_one_process)

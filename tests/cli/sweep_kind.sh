@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# sweep_kind.sh SANDBOX WORK KIND TABLE [OPTIONS...]: `sandbox KIND OPTIONS` in one process, and
-# `sandbox sweep plan KIND OPTIONS` run in 2 shards and merged, write the same TABLE (a CSV) in every column
-# but the timings.
+# sweep_kind.sh SANDBOX WORK KIND TABLE [OPTIONS...]: `sandbox KIND OPTIONS` in one process (`bench grid`
+# for KIND grid), and `sandbox sweep plan KIND OPTIONS` run in 2 shards and merged, write the same TABLE (a
+# CSV) in every column but the timings. ONE_PROCESS_DIR, when set, is a folder that command already wrote
+# (by another test), used instead of running it again.
 set -uo pipefail
 sandbox=$1
 work=$2
@@ -12,7 +13,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 source "$here/sweep_support.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 
-"$sandbox" "$kind" "$@" --out one > one.log 2>&1 || fail "sandbox $kind $*: $(tail -3 one.log)"
+command=("$kind")
+[[ $kind == grid ]] && command=(bench grid)
+if [[ -n ${ONE_PROCESS_DIR:-} ]]; then
+  ln -s "$ONE_PROCESS_DIR" one
+else
+  "$sandbox" "${command[@]}" "$@" --out one > one.log 2>&1 || fail "sandbox ${command[*]} $*: $(tail -3 one.log)"
+fi
 "$sandbox" sweep plan "$kind" "$@" --out plan.jsonl > /dev/null || fail "sweep plan $kind"
 cases=$(($(wc -l < plan.jsonl) - 1))
 [[ $cases -ge 2 ]] || fail "plan.jsonl: $cases cases, expected at least 2 to shard"

@@ -3,6 +3,7 @@
 # and the same sweep planned, run in 3 shards (two at once) and merged, give the same tradeoff.csv in every
 # column but the timings (and the Pareto flag, which is decided by them). With PARALLEL=parallel, the
 # shards run through tools/sweep/parallel.sh instead (skipped, exit 77, when GNU parallel is missing).
+# ONE_PROCESS_DIR, when set, is the one-process result made by another test (the same options).
 set -uo pipefail
 sandbox=$1
 work=$2
@@ -16,7 +17,11 @@ fi
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 
 options=(--quick --scene wall_crash --set duration_s=0.3)
-"$sandbox" tradeoff "${options[@]}" --out one > one.log 2>&1 || fail "one-process tradeoff: $(tail -3 one.log)"
+if [[ -n ${ONE_PROCESS_DIR:-} ]]; then  # the one-process result another test made
+  ln -s "$ONE_PROCESS_DIR" one
+else
+  "$sandbox" tradeoff "${options[@]}" --out one > one.log 2>&1 || fail "one-process tradeoff: $(tail -3 one.log)"
+fi
 "$sandbox" sweep plan tradeoff "${options[@]}" --out plan.jsonl > /dev/null || fail "plan"
 [[ $(wc -l < plan.jsonl) -eq 17 ]] || fail "plan.jsonl: expected a header and 16 cases"
 if [[ $mode == parallel ]]; then

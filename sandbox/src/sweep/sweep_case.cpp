@@ -1,6 +1,7 @@
 #include "sweep/sweep_case.hpp"
 
 #include "build_version.hpp"
+#include "grid/grid_sweep.hpp"
 #include "stress/stress_sweep.hpp"
 #include "tradeoff/tradeoff.hpp"
 
@@ -46,6 +47,7 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
 nlohmann::json measureCase(const SweepCase& sweep_case) {
   if (sweep_case.measure == "tradeoff") return measureTradeoffCase(sweep_case.scene, sweep_case.overrides);
   if (sweep_case.measure == "crash") return measureCrash(sweep_case.scene, sweep_case.overrides);
+  if (sweep_case.measure == "grid") return measureGridCase(sweep_case);
   if (sweep_case.measure == "stress") {
     const auto group = sweep_case.labels.find("group");
     if (group == sweep_case.labels.end() || !group->is_string())

@@ -8,6 +8,7 @@
 //   "tradeoff" the scene frame by frame with the skin: cost per frame, crush, strain and the render mesh
 //              at the end, as little-endian float32 in base64 (tradeoff/tradeoff.hpp)
 //   "stress"   one stress group (labels: group, quick), every case's verdict (stress/stress_sweep.hpp)
+//   "grid"     one resolution of the benchmark grid, or one Bullet crash speed (grid/grid_sweep.hpp)
 #include "sweep/sweep_plan.hpp"
 
 #include <Eigen/Core>

@@ -40,9 +40,9 @@ SweepCase parseCase(const nlohmann::json& line, const std::string& where) {
   c.scene = stringField(line, "scene", where);
   c.scene_hash = stringField(line, "scene_hash", where);
   c.measure = stringField(line, "measure", where);
-  if (c.measure != "tradeoff" && c.measure != "crash" && c.measure != "stress") {
+  if (c.measure != "tradeoff" && c.measure != "crash" && c.measure != "stress" && c.measure != "grid") {
     throw deform::InputError(where + ": field 'measure': unknown measure '" + c.measure +
-                             "' (tradeoff, crash, stress)");
+                             "' (tradeoff, crash, stress, grid)");
   }
   const auto overrides = line.find("overrides");
   if (overrides == line.end() || !overrides->is_array())

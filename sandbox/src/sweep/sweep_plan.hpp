@@ -27,7 +27,7 @@ struct SweepCase {
 };
 
 struct SweepPlan {
-  std::string kind;     ///< "tradeoff", "converge", "stress", "custom"
+  std::string kind;     ///< "tradeoff", "converge", "stress", "grid", "custom"
   std::string version;  ///< the build that wrote it
   nlohmann::json options = nlohmann::json::object();
   std::vector<SweepCase> cases;

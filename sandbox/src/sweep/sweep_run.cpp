@@ -3,6 +3,7 @@
 #include "build_version.hpp"
 #include "commands.hpp"
 #include "converge/converge.hpp"
+#include "grid/grid_sweep.hpp"
 #include "stress/stress_sweep.hpp"
 #include "sweep/custom_sweep.hpp"
 #include "sweep/sweep_case.hpp"
@@ -216,6 +217,8 @@ void writeSweepReport(const SweepPlan& plan, const std::vector<nlohmann::json>& 
     writeTradeoffReport(assembleTradeoff(plan, measured), out_dir);
   } else if (plan.kind == "converge") {
     writeConvergeReport(plan, measured, out_dir);
+  } else if (plan.kind == "grid") {
+    writeGridReport(plan, measured, out_dir);
   } else if (plan.kind == "stress") {
     writeStressSweepReport(plan, measured, out_dir);
   } else if (plan.kind == "custom") {
