@@ -65,6 +65,9 @@ out=$("$sandbox" sweep run plan.jsonl --out other 2>&1)
 [[ $? -eq 2 && $out == *"other/plan.jsonl: this folder holds the results of another plan"* ]] ||
   fail "a run into another plan's folder not refused: $out"
 
+out=$("$sandbox" sweep run plan.jsonl --out /proc/no_such_folder 2>&1)
+[[ $? -eq 2 && $out == *"--out: cannot create /proc/no_such_folder/cases"* ]] || fail "a bad --out not refused: $out"
+
 # A case that fails (a bad value slipped into the plan): recorded with its error and exit code, the rest
 # run, the shard exits 1, and the merge names it.
 sed 's/control_points=500"/control_points=-5"/' plan.jsonl > broken.jsonl

@@ -87,11 +87,11 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
       throw deform::InputError(kept_plan + ": this folder holds the results of another plan than " +
                                plan_path + " (use another --out)");
     }
-  } else {
-    fs::create_directories(dir + "/cases");
-    writeAtomically(kept_plan, text);
   }
-  fs::create_directories(dir + "/cases");
+  std::error_code ec;
+  fs::create_directories(dir + "/cases", ec);
+  if (ec) throw deform::InputError("--out: cannot create " + dir + "/cases (" + ec.message() + ")");
+  if (!fs::exists(kept_plan)) writeAtomically(kept_plan, text);
 
   ShardSummary summary;
   for (std::size_t i = 0; i < plan.cases.size(); ++i) {
