@@ -36,6 +36,12 @@ nlohmann::json readResult(const std::string& path) {
   return nullptr;
 }
 
+// A result's text field, "" when it is missing or not text (a hand-edited or foreign file).
+std::string field(const nlohmann::json& result, const char* name) {
+  const auto it = result.find(name);
+  return it != result.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 std::string describe(const SweepCase& c) {
   std::string text = c.id + " " + c.scene;
   for (const std::string& o : c.overrides) text += " " + o;
@@ -101,9 +107,8 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
     const std::string path = casePath(dir, c);
     if (fs::exists(path)) {
       const nlohmann::json kept = readResult(path);
-      const bool ours =
-          kept.is_object() && kept.value("plan_id", "") == plan_id && kept.value("case", "") == c.id;
-      const bool failed = ours && kept.value("status", "") != "done";
+      const bool ours = kept.is_object() && field(kept, "plan_id") == plan_id && field(kept, "case") == c.id;
+      const bool failed = ours && field(kept, "status") != "done";
       if (ours && !(failed && options.retry_failed)) {
         ++summary.skipped;
         summary.failed += failed ? 1 : 0;
@@ -160,7 +165,7 @@ MergedSweep gatherSweep(const std::string& dir) {
       nlohmann::json result = readResult(dir + "/cases/" + name);
       if (!result.is_object()) {
         foreign.push_back("cases/" + name + " (not a result)");
-      } else if (result.value("plan_id", "") != plan_id || result.value("case", "") != id) {
+      } else if (field(result, "plan_id") != plan_id || field(result, "case") != id) {
         foreign.push_back("cases/" + name + " (of another plan)");
       } else {
         results[it->second] = std::move(result);
@@ -188,14 +193,16 @@ MergedSweep gatherSweep(const std::string& dir) {
   std::set<std::string> versions;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const nlohmann::json& r = results[i];
-    versions.insert(r.value("version", "?"));
-    if (r.value("status", "") != "done") {
+    versions.insert(field(r, "version"));
+    if (field(r, "status") != "done") {
       failed.push_back(merged.plan.cases[i].id);
-      std::fprintf(stderr, "sandbox: case %s (%s) failed, exit %d: %s\n", merged.plan.cases[i].id.c_str(),
-                   describe(merged.plan.cases[i]).c_str(), r.value("exit_code", 1),
-                   r.value("error", "").c_str());
+      std::fprintf(
+          stderr, "sandbox: case %s (%s) failed, exit %d: %s\n", merged.plan.cases[i].id.c_str(),
+          describe(merged.plan.cases[i]).c_str(),
+          r.contains("exit_code") && r.at("exit_code").is_number_integer() ? r.at("exit_code").get<int>() : 1,
+          field(r, "error").c_str());
     } else {
-      merged.measured.push_back(r["measured"]);
+      merged.measured.push_back(r.contains("measured") ? r.at("measured") : nlohmann::json());
     }
   }
   if (!failed.empty()) {
