@@ -20,6 +20,8 @@ packages=(
   ffmpeg            # MP4 encoding, ffprobe in tests
   libbullet-dev     # Bullet's soft body: the baseline of bench grid
   gnuplot-nox       # plots of bench grid and tradeoff
+  parallel          # GNU parallel: sweep shards on this machine or over ssh (tools/sweep/parallel.sh)
+  munge slurmctld slurmd slurm-client # a one-node Slurm for the cluster test (tools/sweep/local-slurm.sh)
   clang             # the sanitizer build and libFuzzer (make test-asan, make fuzz)
   libclang-rt-14-dev # clang's sanitizer and libFuzzer runtimes
   llvm              # llvm-symbolizer: sanitizer reports with file and line

@@ -2,7 +2,15 @@
 // Each command group registers its subcommands on the program's CLI11 app.
 #include <CLI/CLI.hpp>
 
+#include <stdexcept>
+
 namespace sandbox {
+
+/// A command that ran but did not succeed (failed sweep cases): main prints its message, exit code 1.
+class CommandFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 void registerMeshCommands(CLI::App& app);
 void registerBenchCommands(CLI::App& app);
@@ -23,6 +31,8 @@ void registerStressCommand(CLI::App& app);
 void registerTradeoffCommand(CLI::App& app);
 /// `sandbox converge`: crush against the level of detail (cmd_converge.cpp).
 void registerConvergeCommand(CLI::App& app);
+/// `sandbox sweep plan|run|merge` (sweeps in shards), in cmd_sweep.cpp.
+void registerSweepCommand(CLI::App& app);
 /// `sandbox export` (the damaged car at a time as a mesh), in cmd_export.cpp.
 void registerExportCommand(CLI::App& app);
 

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   sandbox::registerStressCommand(app);
   sandbox::registerTradeoffCommand(app);
   sandbox::registerConvergeCommand(app);
+  sandbox::registerSweepCommand(app);
   // CLI11 says only "A subcommand is required" for a mistyped command; name it instead.
   const auto known =
       app.get_subcommands([&](const CLI::App* sub) { return argc > 1 && sub->get_name() == argv[1]; });
@@ -40,6 +41,9 @@ int main(int argc, char** argv) {
   } catch (const deform::InputError& e) {
     std::fprintf(stderr, "sandbox: %s\n", e.what());
     return 2;
+  } catch (const sandbox::CommandFailure& e) {
+    std::fprintf(stderr, "sandbox: %s\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sandbox: internal failure: %s\n", e.what());
     return 1;

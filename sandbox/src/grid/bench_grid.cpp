@@ -63,11 +63,23 @@ deform::Mesh asMesh(const deform::ControlMesh& control) {
   return mesh;
 }
 
-std::vector<baselines::SoftBodyCrash> bulletCrashes(const GridOptions& options) {
+namespace {
+
+deform::Mesh crashControlMesh() {
   const deform::Mesh body = deform::makeSedan(20000).body;
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : body.positions_m) points.push_back(p.cast<double>());
-  const deform::Mesh control = asMesh(deform::buildControlMesh(points, 60, "builtin:sedan"));
+  return asMesh(deform::buildControlMesh(points, 60, "builtin:sedan"));
+}
+
+}  // namespace
+
+baselines::SoftBodyCrash bulletCrash(double speed_kmh) {
+  return baselines::bulletWallCrash(crashControlMesh(), kMass_kg, speed_kmh, 1.2, 500);
+}
+
+std::vector<baselines::SoftBodyCrash> bulletCrashes(const GridOptions& options) {
+  const deform::Mesh control = crashControlMesh();
   std::vector<baselines::SoftBodyCrash> out;
   for (double kmh : options.bullet_crash_speeds_kmh)
     out.push_back(baselines::bulletWallCrash(control, kMass_kg, kmh, 1.2, 500));
@@ -83,85 +95,96 @@ GridOptions GridOptions::quick() {
   return o;
 }
 
-std::vector<GridRow> runBenchGrid(const GridOptions& options,
-                                  const std::function<void(const GridRow&)>& on_row) {
+std::vector<GridRow> runBenchGridResolution(const GridOptions& options, std::size_t vertices,
+                                            bool first_resolution, std::map<std::size_t, double>& step_ms_of,
+                                            const std::function<void(const GridRow&)>& on_row) {
   std::vector<GridRow> rows;
   const auto emit = [&](const GridRow& row) {
     rows.push_back(row);
     if (on_row) on_row(row);
   };
-  std::map<std::size_t, StepCost> step_of;  // the step does not depend on the render mesh
-  for (const std::size_t vertices : options.vertices) {
-    const deform::Mesh body = deform::makeSedan(vertices).body;
-    std::vector<Eigen::Vector3d> points;
-    points.reserve(body.positions_m.size());
-    for (const auto& p : body.positions_m) points.push_back(p.cast<double>());
-    auto start = Clock::now();
-    const deform::ControlMesh hull = deform::convexHull(points, "builtin:sedan");
-    const double hull_ms = msSince(start);
+  const deform::Mesh body = deform::makeSedan(vertices).body;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(body.positions_m.size());
+  for (const auto& p : body.positions_m) points.push_back(p.cast<double>());
+  auto start = Clock::now();
+  const deform::ControlMesh hull = deform::convexHull(points, "builtin:sedan");
+  const double hull_ms = msSince(start);
 
-    for (const std::size_t n : options.control_points) {
-      GridRow row;
-      row.method = "skin K=8";
-      row.vertices = body.positions_m.size();
-      row.hull_ms = hull_ms;
-      start = Clock::now();
-      const deform::ControlMesh mesh = deform::buildControlMesh(hull.points_m, n, "builtin:sedan");
-      row.lod_ms = msSince(start);
-      row.control_points = mesh.points_m.size();
-      start = Clock::now();
-      const auto settings = std::make_shared<const deform::BodySettings>(deform::createBodySettings(
-          mesh, deform::distributeMass(mesh, kMass_kg), deform::BodyDescription{}));
-      row.body_ms = msSince(start);
-      row.constraints = settings->constraintCount();
-      if (!step_of.count(n)) step_of[n] = measureStepCost(settings, frameStep(row.control_points));
-      row.step_ms = step_of[n].us_per_step * 1e-3;
+  for (const std::size_t n : options.control_points) {
+    GridRow row;
+    row.method = "skin K=8";
+    row.vertices = body.positions_m.size();
+    row.hull_ms = hull_ms;
+    start = Clock::now();
+    const deform::ControlMesh mesh = deform::buildControlMesh(hull.points_m, n, "builtin:sedan");
+    row.lod_ms = msSince(start);
+    row.control_points = mesh.points_m.size();
+    start = Clock::now();
+    const auto settings = std::make_shared<const deform::BodySettings>(
+        deform::createBodySettings(mesh, deform::distributeMass(mesh, kMass_kg), deform::BodyDescription{}));
+    row.body_ms = msSince(start);
+    row.constraints = settings->constraintCount();
+    if (!step_ms_of.count(n))
+      step_ms_of[n] = measureStepCost(settings, frameStep(row.control_points)).us_per_step * 1e-3;
+    row.step_ms = step_ms_of[n];
 
-      for (const std::size_t k : {std::size_t{8}, std::size_t{0}}) {
-        GridRow cell = row;
-        if (k == 0) {
-          cell.method = "skin dense";
-          const std::size_t bytes = row.vertices * row.control_points * (sizeof(float) + sizeof(uint16_t));
-          if (bytes > options.dense_budget_bytes) continue;  // would not fit: not measured
-        }
-        deform::SkinOptions skin_options;
-        skin_options.k_nearest = k;
-        skin_options.threads = options.threads;
-        start = Clock::now();
-        const deform::Skin skin = deform::Skin::build(body.positions_m, mesh.points_m, skin_options);
-        cell.skin_ms = msSince(start);
-        cell.skin_bytes = skin.memoryBytes();
-        cell.embed_ms = embedPass_ms(skin, body.positions_m, options.threads);
-        emit(cell);
+    for (const std::size_t k : {std::size_t{8}, std::size_t{0}}) {
+      GridRow cell = row;
+      if (k == 0) {
+        cell.method = "skin dense";
+        const std::size_t bytes = row.vertices * row.control_points * (sizeof(float) + sizeof(uint16_t));
+        if (bytes > options.dense_budget_bytes) continue;  // would not fit: not measured
       }
-      if (vertices == options.vertices.front()) {
-        // Bullet's soft body on the same control mesh, as its deformation model (the skin's embedding
-        // would come on top).
-        const baselines::SoftBodyCost bullet = baselines::bulletSoftBodyCost(asMesh(mesh), kMass_kg, 60, 4);
-        GridRow b = row;
-        b.method = "Bullet soft body (control mesh)";
-        b.constraints = bullet.links;
-        b.body_ms = bullet.build_ms;
-        b.step_ms = bullet.ms_per_frame;
-        b.note = bullet.finite ? "" : "not finite";
-        emit(b);
-      }
+      deform::SkinOptions skin_options;
+      skin_options.k_nearest = k;
+      skin_options.threads = options.threads;
+      start = Clock::now();
+      const deform::Skin skin = deform::Skin::build(body.positions_m, mesh.points_m, skin_options);
+      cell.skin_ms = msSince(start);
+      cell.skin_bytes = skin.memoryBytes();
+      cell.embed_ms = embedPass_ms(skin, body.positions_m, options.threads);
+      emit(cell);
     }
-    if (vertices <= options.full_resolution_max_vertices)
-      emit(fullResolutionRow(body, kMass_kg, frameStep(vertices)));
-    if (vertices <= options.bullet_max_vertices) {
-      const baselines::SoftBodyCost bullet =
-          baselines::bulletSoftBodyCost(body, kMass_kg, vertices > 20000 ? 5 : 30, 4);
-      GridRow b;
-      b.method = "Bullet soft body (render mesh)";
-      b.vertices = body.positions_m.size();
-      b.control_points = bullet.nodes;
+    if (first_resolution) {
+      // Bullet's soft body on the same control mesh, as its deformation model (the skin's embedding
+      // would come on top).
+      const baselines::SoftBodyCost bullet = baselines::bulletSoftBodyCost(asMesh(mesh), kMass_kg, 60, 4);
+      GridRow b = row;
+      b.method = "Bullet soft body (control mesh)";
       b.constraints = bullet.links;
       b.body_ms = bullet.build_ms;
       b.step_ms = bullet.ms_per_frame;
       b.note = bullet.finite ? "" : "not finite";
       emit(b);
     }
+  }
+  if (vertices <= options.full_resolution_max_vertices)
+    emit(fullResolutionRow(body, kMass_kg, frameStep(vertices)));
+  if (vertices <= options.bullet_max_vertices) {
+    const baselines::SoftBodyCost bullet =
+        baselines::bulletSoftBodyCost(body, kMass_kg, vertices > 20000 ? 5 : 30, 4);
+    GridRow b;
+    b.method = "Bullet soft body (render mesh)";
+    b.vertices = body.positions_m.size();
+    b.control_points = bullet.nodes;
+    b.constraints = bullet.links;
+    b.body_ms = bullet.build_ms;
+    b.step_ms = bullet.ms_per_frame;
+    b.note = bullet.finite ? "" : "not finite";
+    emit(b);
+  }
+  return rows;
+}
+
+std::vector<GridRow> runBenchGrid(const GridOptions& options,
+                                  const std::function<void(const GridRow&)>& on_row) {
+  std::vector<GridRow> rows;
+  std::map<std::size_t, double> step_ms_of;  // the step does not depend on the render mesh
+  for (const std::size_t vertices : options.vertices) {
+    for (GridRow& row :
+         runBenchGridResolution(options, vertices, vertices == options.vertices.front(), step_ms_of, on_row))
+      rows.push_back(std::move(row));
   }
   return rows;
 }

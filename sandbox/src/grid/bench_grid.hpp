@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,15 @@ deform::Mesh asMesh(const deform::ControlMesh& control);
 /// Bullet's soft body of the sedan's 60-point control mesh in wall_crash (500 Hz, 1.2 s) at each of
 /// options.bullet_crash_speeds_kmh.
 std::vector<baselines::SoftBodyCrash> bulletCrashes(const GridOptions& options);
+
+/// Bullet's soft body crash of bulletCrashes at one speed [km/h].
+baselines::SoftBodyCrash bulletCrash(double speed_kmh);
+
+/// The rows of one render-mesh resolution, in runBenchGrid's order (Bullet on the control mesh only when
+/// `first_resolution`). `step_ms_of` caches the step's cost per control-point count across resolutions.
+std::vector<GridRow> runBenchGridResolution(const GridOptions& options, std::size_t vertices,
+                                            bool first_resolution, std::map<std::size_t, double>& step_ms_of,
+                                            const std::function<void(const GridRow&)>& on_row = {});
 
 /// Measures every cell; `on_row` is called as each row is done (progress).
 std::vector<GridRow> runBenchGrid(const GridOptions& options,

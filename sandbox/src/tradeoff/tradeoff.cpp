@@ -1,5 +1,8 @@
 #include "tradeoff/tradeoff.hpp"
 
+#include "build_version.hpp"
+#include "sweep/sweep_case.hpp"
+
 #include <scenes/car_skin.hpp>
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
@@ -9,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace sandbox {
 namespace {
@@ -52,39 +56,33 @@ struct Played {
   double diagonal_m = 0;
 };
 
-Played play(const std::string& scene_name, const std::vector<std::string>& overrides) {
-  std::vector<scenes::Override> parsed;
-  for (const std::string& o : overrides) parsed.push_back(scenes::parseOverride(o));
-  const scenes::SceneConfig scene = scenes::loadScene(scene_name, parsed);
-  scenes::SceneRun run(scene);
-  const vehicle::CarId car = run.carId(0);
-  vehicle::Simulation& simulation = run.simulation();
-  scenes::CarSkin skin(run.model(0).body, simulation.controlRestPoints(car),
-                       simulation.deformationSettings(car));
-  const auto frames = static_cast<long>(std::llround(scene.duration_s * kFrameRate_hz));
-  double embed_ms = 0;
-  for (long f = 1; f <= frames; ++f) {
-    run.stepUntil(static_cast<double>(f) / kFrameRate_hz);
-    const auto t0 = Clock::now();
-    skin.update(simulation.controlDisplacements(car));
-    embed_ms += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  }
-  run.runToEnd();
-  skin.update(simulation.controlDisplacements(car));
-
+// A case's measure (measureTradeoffCase) back as a row and its render mesh.
+Played played(const SweepCase& sweep_case, const nlohmann::json& measured) {
+  const std::string what = "case " + sweep_case.id;
+  const auto number = [&](const char* name) {
+    const auto it = measured.find(name);
+    if (it == measured.end() || !it->is_number())
+      throw deform::InputError(what + ": measured." + name + ": missing or not a number");
+    return it->get<double>();
+  };
+  const auto text = [&](const char* name) {
+    const auto it = measured.find(name);
+    if (it == measured.end() || !it->is_string())
+      throw deform::InputError(what + ": measured." + name + ": missing or not a string");
+    return it->get<std::string>();
+  };
+  if (!measured.is_object()) throw deform::InputError(what + ": no measure");
   Played p;
   TradeoffRow& r = p.row;
-  r.scene = scene.name;
-  r.overrides = overrides;
-  const double n = static_cast<double>(std::max<long>(frames, 1));
-  r.physics_ms = run.times().physics_ms / n;
-  r.deform_ms = run.times().deform_ms / n;
-  r.embed_ms = embed_ms / n;
-  r.residual_crush_m = simulation.metrics(car).residual_crush_m;
-  r.strain_residual =
-      deform::constraintStrainRms(simulation.body(car).settings(), simulation.body(car).state());
-  p.vertices_m = skin.mesh().positions_m;
-  p.diagonal_m = deform::boundingBox(run.model(0).body).diagonal_m();
+  r.scene = text("scene_name");
+  r.overrides = sweep_case.overrides;
+  r.physics_ms = number("physics_ms");
+  r.deform_ms = number("deform_ms");
+  r.embed_ms = number("embed_ms");
+  r.residual_crush_m = number("residual_crush_m");
+  r.strain_residual = number("strain_residual");
+  p.diagonal_m = number("diagonal_m");
+  p.vertices_m = decodePoints(text("render_mesh_m"), what + ": measured.render_mesh_m");
   return p;
 }
 
@@ -129,40 +127,123 @@ void printRow(const TradeoffRow& r) {
   std::fflush(stdout);
 }
 
+std::string label(const nlohmann::json& labels, const char* name) {
+  const auto it = labels.find(name);
+  return it != labels.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 }  // namespace
 
-std::vector<TradeoffRow> runTradeoff(const TradeoffOptions& options) {
-  std::vector<TradeoffRow> rows;
+SweepPlan planTradeoff(const TradeoffOptions& options) {
+  SweepPlan plan;
+  plan.kind = "tradeoff";
+  plan.version = buildVersion();
+  plan.options = {{"scenes", options.scenes}, {"quick", options.quick}, {"sets", options.sets}};
+  std::vector<scenes::Override> sets;
+  for (const std::string& set : options.sets) sets.push_back(scenes::parseOverride(set));
   for (const std::string& scene : options.scenes) {
-    const std::size_t begin = rows.size();
-    const scenes::SceneConfig as_shipped = scenes::loadScene(scene);
-    if (as_shipped.vehicles.size() != 1) {
-      throw deform::InputError(as_shipped.source + ": tradeoff measures one car; this scene has " +
-                               std::to_string(as_shipped.vehicles.size()));
+    const scenes::SceneConfig as_set = scenes::loadScene(scene, sets);
+    if (as_set.vehicles.size() != 1) {
+      throw deform::InputError(as_set.source + ": tradeoff measures one car; this scene has " +
+                               std::to_string(as_set.vehicles.size()));
     }
-    std::printf("%s: reference run\n", scene.c_str());
-    std::fflush(stdout);
-    const Played reference = play(scene, referenceOverrides(options.quick));
-    const auto add = [&](const std::string& knob, const std::string& value, const Played& run) {
-      TradeoffRow row = run.row;
-      row.knob = knob;
-      row.value = value;
-      setError(row, run, reference);
-      printRow(row);
-      rows.push_back(row);
+    const auto add = [&](const std::string& knob, const std::string& value, std::vector<std::string> own) {
+      std::vector<std::string> overrides = options.sets;
+      overrides.insert(overrides.end(), own.begin(), own.end());
+      addCase(plan, scene, overrides, "tradeoff", {{"knob", knob}, {"value", value}});
     };
-    add("reference", "top", reference);
+    add("reference", "top", referenceOverrides(options.quick));
     for (const char* preset : {"fast", "balanced", "accurate"}) {
-      add("preset", preset, play(scene, {std::string(kKnobPath) + "preset=" + preset}));
+      add("preset", preset, {std::string(kKnobPath) + "preset=" + preset});
     }
     for (const Knob& knob : sweep(options.quick)) {
       for (const std::string& value : knob.values) {
         const std::string shown = knob.name == "k_nearest" && value == "0" ? "dense" : value;
-        add(knob.name, shown, play(scene, {overridePath(knob.name) + "=" + value}));
+        add(knob.name, shown, {overridePath(knob.name) + "=" + value});
       }
     }
-    markPareto(rows, begin);
   }
+  return plan;
+}
+
+nlohmann::json measureTradeoffCase(const std::string& scene_name, const std::vector<std::string>& overrides) {
+  std::vector<scenes::Override> parsed;
+  for (const std::string& o : overrides) parsed.push_back(scenes::parseOverride(o));
+  const scenes::SceneConfig scene = scenes::loadScene(scene_name, parsed);
+  scenes::SceneRun run(scene);
+  const vehicle::CarId car = run.carId(0);
+  vehicle::Simulation& simulation = run.simulation();
+  scenes::CarSkin skin(run.model(0).body, simulation.controlRestPoints(car),
+                       simulation.deformationSettings(car));
+  const auto frames = static_cast<long>(std::llround(scene.duration_s * kFrameRate_hz));
+  double embed_ms = 0;
+  for (long f = 1; f <= frames; ++f) {
+    run.stepUntil(static_cast<double>(f) / kFrameRate_hz);
+    const auto t0 = Clock::now();
+    skin.update(simulation.controlDisplacements(car));
+    embed_ms += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  }
+  run.runToEnd();
+  skin.update(simulation.controlDisplacements(car));
+
+  const double n = static_cast<double>(std::max<long>(frames, 1));
+  return {{"scene_name", scene.name},
+          {"physics_ms", run.times().physics_ms / n},
+          {"deform_ms", run.times().deform_ms / n},
+          {"embed_ms", embed_ms / n},
+          {"residual_crush_m", simulation.metrics(car).residual_crush_m},
+          {"strain_residual",
+           deform::constraintStrainRms(simulation.body(car).settings(), simulation.body(car).state())},
+          {"diagonal_m", deform::boundingBox(run.model(0).body).diagonal_m()},
+          {"render_mesh_m", encodePoints(skin.mesh().positions_m)}};
+}
+
+std::vector<TradeoffRow> assembleTradeoff(const SweepPlan& plan,
+                                          const std::vector<nlohmann::json>& measured) {
+  if (measured.size() != plan.cases.size()) throw std::logic_error("assembleTradeoff: one measure per case");
+  std::vector<TradeoffRow> rows;
+  std::size_t i = 0;
+  while (i < plan.cases.size()) {
+    // One scene's cases: those that follow with the same scene.
+    std::size_t end = i;
+    while (end < plan.cases.size() && plan.cases[end].scene == plan.cases[i].scene) ++end;
+    std::size_t reference_index = end;
+    for (std::size_t k = i; k < end; ++k)
+      if (label(plan.cases[k].labels, "knob") == "reference") reference_index = k;
+    if (reference_index == end)
+      throw deform::InputError("tradeoff plan: scene " + plan.cases[i].scene + " has no reference case");
+    const Played reference = played(plan.cases[reference_index], measured[reference_index]);
+    const std::size_t begin = rows.size();
+    for (std::size_t k = i; k < end; ++k) {
+      const Played run = k == reference_index ? reference : played(plan.cases[k], measured[k]);
+      if (run.vertices_m.size() != reference.vertices_m.size()) {
+        throw deform::InputError("case " + plan.cases[k].id + ": render mesh of " +
+                                 std::to_string(run.vertices_m.size()) + " points, the reference's has " +
+                                 std::to_string(reference.vertices_m.size()));
+      }
+      TradeoffRow row = run.row;
+      row.knob = label(plan.cases[k].labels, "knob");
+      row.value = label(plan.cases[k].labels, "value");
+      setError(row, run, reference);
+      rows.push_back(row);
+    }
+    markPareto(rows, begin);
+    i = end;
+  }
+  return rows;
+}
+
+std::vector<TradeoffRow> runTradeoff(const TradeoffOptions& options) {
+  const SweepPlan plan = planTradeoff(options);
+  std::vector<nlohmann::json> measured;
+  for (const SweepCase& c : plan.cases) {
+    std::printf("%s: %s %s\n", c.scene.c_str(), label(c.labels, "knob").c_str(),
+                label(c.labels, "value").c_str());
+    std::fflush(stdout);
+    measured.push_back(measureTradeoffCase(c.scene, c.overrides));
+  }
+  std::vector<TradeoffRow> rows = assembleTradeoff(plan, measured);
+  for (const TradeoffRow& r : rows) printRow(r);
   return rows;
 }
 

@@ -2,6 +2,10 @@
 // Speed against accuracy (DESIGN.md section 6): one scene played at the top of every knob (the
 // reference), then with one knob at a time moved from the balanced preset, and each run's cost per frame
 // and error against the reference measured on the render mesh.
+#include "sweep/sweep_plan.hpp"
+
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -27,11 +31,28 @@ struct TradeoffRow {
 
 struct TradeoffOptions {
   std::vector<std::string> scenes = {"wall_crash", "post_bumps"};
-  bool quick = false;  ///< fewer values per knob and a lighter reference
+  bool quick = false;             ///< fewer values per knob and a lighter reference
+  std::vector<std::string> sets;  ///< scene overrides for every run, before the knob's own
 };
 
-/// The reference and sweep of every scene, Pareto flags set per scene. Progress lines go to stdout.
-/// Throws deform::InputError for a scene with more than one car.
+/// The sweep as a plan (sweep/sweep_plan.hpp, kind "tradeoff"): per scene the reference, the three presets
+/// and one knob at a time, each case measured by measureTradeoffCase. Checks every scene and override
+/// first: throws deform::InputError for a bad one or a scene with more than one car.
+SweepPlan planTradeoff(const TradeoffOptions& options);
+
+/// One case played frame by frame with the skin (the sweep's "tradeoff" measure): cost per 60 Hz frame by
+/// stage, residual crush, strain residual, the bounding-box diagonal and the render mesh at the end.
+nlohmann::json measureTradeoffCase(const std::string& scene, const std::vector<std::string>& overrides);
+
+/// The rows from a tradeoff plan and each case's measure (in the plan's order): the error of each
+/// against its scene's reference, Pareto flags per scene. Throws deform::InputError naming a case whose
+/// measure lacks a field, or a scene without its reference.
+std::vector<TradeoffRow> assembleTradeoff(const SweepPlan& plan, const std::vector<nlohmann::json>& measured);
+
+/// planTradeoff, every case measured in this process, assembleTradeoff. Progress lines go to stdout.
 std::vector<TradeoffRow> runTradeoff(const TradeoffOptions& options);
+
+/// tradeoff.csv, tradeoff.md and a Pareto plot per scene into `dir` (tradeoff_report.cpp).
+void writeTradeoffReport(const std::vector<TradeoffRow>& rows, const std::string& dir);
 
 }  // namespace sandbox

@@ -1,0 +1,161 @@
+#include "converge/converge.hpp"
+
+#include "build_version.hpp"
+#include "plot.hpp"
+#include "table_output.hpp"
+
+#include <scenes/scene_file.hpp>
+#include <scenes/scene_run.hpp>
+
+#include <deform/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace sandbox {
+namespace {
+
+/// One scene at one level of detail.
+struct ConvergeRow {
+  std::string scene;
+  std::size_t control_points = 0;
+  double residual_crush_m = 0, max_residual_crush_m = 0, max_dynamic_crush_m = 0, max_dent_m = 0;
+  double restitution = 0, plastic_work_J = 0, kinetic_initial_J = 0, deform_ms = 0;
+  double change_from_finest = 0;  ///< residual crush relative to the finest level's, minus one [1]
+};
+
+ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
+  const auto number = [&](const char* name) {
+    if (!m.contains(name) || !m[name].is_number())
+      throw deform::InputError("case " + c.id + ": measured." + name + ": missing or not a number");
+    return m[name].get<double>();
+  };
+  ConvergeRow row;
+  row.scene = c.scene;
+  row.control_points = c.labels.value("control_points", std::size_t{0});
+  row.residual_crush_m = number("residual_crush_m");
+  row.max_residual_crush_m = number("max_residual_crush_m");
+  row.max_dynamic_crush_m = number("max_dynamic_crush_m");
+  row.max_dent_m = number("max_dent_m");
+  row.restitution = number("restitution");
+  row.plastic_work_J = number("plastic_work_J");
+  row.kinetic_initial_J = number("kinetic_initial_J");
+  row.deform_ms = number("deform_ms");
+  return row;
+}
+
+std::string fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::string>& names,
+                  const std::string& dir) {
+  CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
+                "max_dent_m", "restitution", "plastic_work_J", "kinetic_initial_J", "change_from_finest",
+                "deform_ms"});
+  std::ostringstream md;
+  md << "Residual crush (six-station average) against the level of detail; the change is against the finest "
+        "level.\n";
+  for (const std::string& name : names) {
+    md << "\n### " << name << "\n\n| control points | residual crush m | largest m | dynamic crush m "
+       << "| deepest dent m | restitution | plastic / impact energy | change from finest | deform ms |\n"
+       << "|---|---|---|---|---|---|---|---|---|\n";
+    for (const ConvergeRow& r : rows) {
+      if (r.scene != name) continue;
+      csv.addRow({r.scene, std::to_string(r.control_points), CsvTable::number(r.residual_crush_m),
+                  CsvTable::number(r.max_residual_crush_m), CsvTable::number(r.max_dynamic_crush_m),
+                  CsvTable::number(r.max_dent_m), CsvTable::number(r.restitution),
+                  CsvTable::number(r.plastic_work_J), CsvTable::number(r.kinetic_initial_J),
+                  CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms)});
+      md << "| " << r.control_points << " | " << fixed(r.residual_crush_m, 3) << " | "
+         << fixed(r.max_residual_crush_m, 3) << " | " << fixed(r.max_dynamic_crush_m, 3) << " | "
+         << fixed(r.max_dent_m, 3) << " | " << fixed(r.restitution, 3) << " | "
+         << fixed(100 * r.plastic_work_J / std::max(r.kinetic_initial_J, 1e-9), 0) << " % | "
+         << (r.change_from_finest >= 0 ? "+" : "") << fixed(100 * r.change_from_finest, 1) << " % | "
+         << fixed(r.deform_ms, 0) << " |\n";
+    }
+  }
+  scenes::writeFileAtomically(dir + "/converge.csv", csv.text());
+  scenes::writeFileAtomically(dir + "/converge.md", md.str());
+  std::printf("wrote %s/converge.csv, %s/converge.md\n", dir.c_str(), dir.c_str());
+
+  // Residual crush and deepest dent against N (log axis), one line each per scene.
+  std::ostringstream gp;
+  const std::string base = dir + "/converge";
+  gp << "set terminal pngcairo size 1100,700 font 'DejaVu Sans,11' noenhanced\n"
+     << "set output " << gnuplotQuoted(base + ".png") << "\n"
+     << "set title 'Crush against the level of detail (built-in sedan)'\n"
+     << "set logscale x\nset grid\nset key top left box opaque\nset xrange [40:3000]\nset yrange [0:0.9]\n"
+     << "set xlabel 'control points N'\nset ylabel 'crush [m]'\nset datafile separator ','\n"
+     << "plot ";
+  const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string data = base + "_" + names[k] + ".csv";
+    std::ostringstream points;
+    for (const ConvergeRow& r : rows)
+      if (r.scene == names[k])
+        points << r.control_points << "," << r.residual_crush_m << "," << r.max_dent_m << "\n";
+    scenes::writeFileAtomically(data, points.str());
+    const std::string colour = colours[k % 4];
+    gp << (k ? ", \\\n  " : "") << gnuplotQuoted(data) << " using 1:2 with linespoints lw 2 pt 7 lc rgb '"
+       << colour << "' title " << gnuplotQuoted(names[k] + ": residual crush (6 stations)") << ", \\\n  "
+       << gnuplotQuoted(data) << " using 1:3 with linespoints lw 1 dt 2 pt 6 lc rgb '" << colour << "' title "
+       << gnuplotQuoted(names[k] + ": deepest dent");
+  }
+  gp << "\n";
+  if (runGnuplot(base + ".gp", gp.str())) std::printf("wrote %s.png\n", base.c_str());
+}
+
+}  // namespace
+
+SweepPlan planConverge(const ConvergeOptions& options) {
+  const std::vector<std::string> names = {"wall_crash", "pole_side"};
+  const std::vector<std::size_t> levels = options.quick
+                                              ? std::vector<std::size_t>{60, 250}
+                                              : std::vector<std::size_t>{60, 120, 250, 500, 1000, 2000};
+  SweepPlan plan;
+  plan.kind = "converge";
+  plan.version = buildVersion();
+  plan.options = {{"quick", options.quick}, {"sets", options.sets}, {"scenes", names}};
+  std::vector<scenes::Override> sets;
+  for (const std::string& set : options.sets) sets.push_back(scenes::parseOverride(set));
+  for (const std::string& name : names) {
+    scenes::loadScene(name, sets);  // a bad key is refused now, naming it
+    for (std::size_t n : levels) {
+      std::vector<std::string> overrides = options.sets;
+      overrides.push_back("vehicle.deformation.control_points=" + std::to_string(n));
+      addCase(plan, name, overrides, "crash", {{"control_points", n}});
+    }
+  }
+  return plan;
+}
+
+void writeConvergeReport(const SweepPlan& plan, const std::vector<nlohmann::json>& measured,
+                         const std::string& dir) {
+  std::vector<ConvergeRow> rows;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < plan.cases.size(); ++i) {
+    rows.push_back(rowOf(plan.cases[i], measured[i]));
+    if (std::find(names.begin(), names.end(), rows.back().scene) == names.end())
+      names.push_back(rows.back().scene);
+    std::printf("%s, %zu points: residual crush %.3f m\n", rows.back().scene.c_str(),
+                rows.back().control_points, rows.back().residual_crush_m);
+  }
+  std::fflush(stdout);
+  for (const std::string& name : names) {
+    double finest = 0;  // the last (finest) level of the scene
+    for (const ConvergeRow& r : rows)
+      if (r.scene == name) finest = r.residual_crush_m;
+    for (ConvergeRow& r : rows)
+      if (r.scene == name) r.change_from_finest = finest > 0 ? r.residual_crush_m / finest - 1.0 : 0.0;
+  }
+  std::filesystem::create_directories(dir);
+  writeOutputs(rows, names, dir);
+}
+
+}  // namespace sandbox
