@@ -25,6 +25,11 @@ packages=(
   clang             # the sanitizer build and libFuzzer (make test-asan, make fuzz)
   libclang-rt-14-dev # clang's sanitizer and libFuzzer runtimes
   llvm              # llvm-symbolizer: sanitizer reports with file and line
+  pybind11-dev      # the Python module deform_sandbox (python/)
+  python3-dev       # its headers, for Debian's /usr/bin/python3
+  python3-numpy     # arrays of the module
+  python3-pytest    # the module's tests (tests/python/)
+  python3-matplotlib # examples/python/crush_sweep.py
 )
 
 missing=()

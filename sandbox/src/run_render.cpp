@@ -2,13 +2,13 @@
 #include "run_render.hpp"
 
 #include <deform/control_mesh.hpp>
-#include <deform/heat_colours.hpp>
 
 #include <vehicle/obstacle_shape.hpp>
 
 #include <chrono>
 #include <cmath>
 
+#include "render/heat_colours.hpp"
 #include "render/vehicle_meshes.hpp"
 
 namespace sandbox {

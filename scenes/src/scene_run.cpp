@@ -144,7 +144,8 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
     const vehicle::CarId id = withSource(where + ".deformation", [&] {
       return simulation_->addDeformableCar(model, settings, start, v.deformation.settings);
     });
-    cars_.push_back(Car{id, std::move(model), DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6});
+    cars_.push_back(
+        Car{id, std::move(model), DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6, std::nullopt});
   }
   for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
     const std::string where = scene_.source + ": obstacles[" + std::to_string(i) + "]";
@@ -202,7 +203,8 @@ void SceneRun::internalStep() {
   const double dt = world.fixedDt_s();
   for (Car& car : cars_) {
     vehicle::Car& chassis = world.car(car.id);
-    chassis.setInput(car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt));
+    chassis.setInput(car.override_input ? *car.override_input
+                                        : car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt));
     if (world.stepCount() == 0 && car.lateral_speed_mps != 0) {
       // A sideways start (a car sliding into a pole): one step's push of m dv / dt at the centre of mass.
       const vehicle::Pose body = chassis.bodyPose();
@@ -215,6 +217,10 @@ void SceneRun::internalStep() {
   const vehicle::StepTimings timings = simulation_->lastTimings();
   times_.physics_ms += timings.physics_ms;
   times_.deform_ms += timings.deform_ms;
+}
+
+void SceneRun::overrideDriverInput(std::size_t car, std::optional<vehicle::DriverInput> input) {
+  cars_.at(car).override_input = std::move(input);
 }
 
 void SceneRun::stepUntil(double t_s) {

@@ -117,4 +117,15 @@ void SceneRun::restoreState(const std::string& path) {
   restoreState(bytes, path);
 }
 
+std::string stateFileSceneSource(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw deform::InputError(path + ": cannot read the state file");
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw deform::InputError(path + ": not a sandbox state file (no DFMSTATE mark)");
+  vehicle::StateReader in(std::span<const uint8_t>(bytes).subspan(kHeaderBytes), path + ": corrupted");
+  in.text();  // the scene's name
+  return in.text();
+}
+
 }  // namespace scenes

@@ -6,7 +6,6 @@
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
-#include <deform/heat_colours.hpp>
 #include <deform/mesh_import.hpp>
 #include <deform/skin.hpp>
 
@@ -16,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "render/heat_colours.hpp"
 #include "render/video_writer.hpp"
 #include "render_test_support.hpp"
 #include "run_command.hpp"

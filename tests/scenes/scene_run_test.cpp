@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 TEST_CASE("every shipped scene runs headless to its end without divergence", "[run]") {
   for (const std::string& name : scenes::shippedSceneNames()) {
@@ -100,4 +101,33 @@ TEST_CASE("a car placed inside an obstacle or another car at the start is refuse
              Catch::Contains("vehicles[0] (striking) overlaps vehicles[1] (struck)"));
   // Touching (the wall's near face 5 mm into the bumper, within the 1 cm allowed) is not refused.
   CHECK(refusal("wall_crash", "obstacles[0].position_m=[2.695,0]") == "(accepted)");
+}
+
+TEST_CASE("a driver's input overrides the drive script until it is released", "[run]") {
+  // wall_crash coasts until 0.8 s; started 10 m further back it meets the wall after 0.8 s: braking from the
+  // start slows the car, the script alone does not.
+  const scenes::SceneConfig config = scenes::loadScene(
+      "wall_crash",
+      {scenes::parseOverride("duration_s=0.6"), scenes::parseOverride("vehicle.start.position_m=[-10, 0]")});
+  scenes::SceneRun scripted(config), braked(config);
+  auto speed = [](const scenes::SceneRun& run) {
+    return run.simulation().world().car(run.carId(0)).forwardSpeed_mps();
+  };
+  vehicle::DriverInput brake;
+  brake.brake = 1.0;
+  braked.overrideDriverInput(0, brake);
+  REQUIRE(braked.driverOverride(0).has_value());
+  scripted.stepUntil(0.2);
+  braked.stepUntil(0.2);
+  const double coasting_mps = speed(scripted), braking_mps = speed(braked);
+  CHECK(coasting_mps > 15.0);  // 56 km/h, less rolling losses
+  INFO("coasting " << coasting_mps << " m/s, braking " << braking_mps << " m/s");
+  CHECK(braking_mps < coasting_mps - 0.5);                  // 0.2 s of full braking takes well over 0.5 m/s
+  CHECK(braking_mps > coasting_mps - 0.2 * 12);             // and no more than the tyres can (1.2 g)
+  CHECK_FALSE(scripted.summary()["impacted"].get<bool>());  // both measured before the wall
+  CHECK(braked.simulation().world().car(braked.carId(0)).input().brake == 1.0);
+  // Released: the script's input again (no brake before 0.8 s).
+  braked.overrideDriverInput(0, std::nullopt);
+  braked.step();
+  CHECK(braked.simulation().world().car(braked.carId(0)).input().brake == 0.0);
 }

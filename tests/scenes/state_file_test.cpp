@@ -196,3 +196,24 @@ TEST_CASE("the run's state hash covers the frame clock of advance()", "[state]")
   CHECK(run.steps() == 0);
   CHECK(run.stateHash() != before);
 }
+
+TEST_CASE("a state file names the scene it was saved from; other files are refused naming them", "[state]") {
+  const scenes::SceneConfig config = scene("wall_crash", {"duration_s=0.1"});
+  scenes::SceneRun run(config);
+  run.stepUntil(0.05);
+  const std::string path = "state_file_test_source.state";
+  run.saveState(path);
+  CHECK(scenes::stateFileSceneSource(path) == config.source);
+  // The source found is enough to resume the run (Python's Scene.resume(path)).
+  scenes::SceneRun resumed(
+      scenes::loadScene(scenes::stateFileSceneSource(path), {scenes::parseOverride("duration_s=0.1")}));
+  resumed.restoreState(path);
+  CHECK(resumed.stateHash() == run.stateHash());
+  std::remove(path.c_str());
+  CHECK_THROWS_WITH(scenes::stateFileSceneSource(path), Catch::StartsWith(path + ": cannot read"));
+  const std::string text = "state_file_test_text.state";
+  scenes::writeFileAtomically(text, "not a state file, but long enough to have a header's 32 bytes");
+  CHECK_THROWS_WITH(scenes::stateFileSceneSource(text),
+                    Catch::StartsWith(text + ": not a sandbox state file"));
+  std::remove(text.c_str());
+}

@@ -44,6 +44,8 @@ struct BodyDescription {
   std::vector<std::pair<uint32_t, double>> max_deviation_overrides;
 };
 
+/// The immutable part of a body (createBodySettings): rest shape, masses, constraints and their material
+/// constants. Shared (std::shared_ptr) by every body built from the same mesh and description.
 struct BodySettings {
   std::vector<Eigen::Vector3d> rest_positions_m;  ///< control points where they started, x0 [m]
   Eigen::Vector3d core_m{0, 0, 0};                ///< the rigid core (centre of mass), vehicle frame [m]
@@ -82,7 +84,8 @@ struct BodySettings {
   std::vector<Material> materials;       ///< [0] = the default, then one per region
   std::vector<PlasticLaw> plastic_laws;  ///< the plasticity part of each material, same indexing
 
-  std::size_t pointCount() const { return rest_positions_m.size(); }
+  std::size_t pointCount() const { return rest_positions_m.size(); }  ///< control points
+  /// Edges, spokes and bends together.
   std::size_t constraintCount() const { return edges.size() + spokes.size() + bends.size(); }
 };
 

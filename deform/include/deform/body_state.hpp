@@ -10,6 +10,8 @@
 
 namespace deform {
 
+/// Everything a step changes: the control points' positions and velocities, the rest lengths and places
+/// plasticity moved, the plastic work, the clock and the sleep state.
 struct BodyState {
   std::vector<Eigen::Vector3d> positions_m;     ///< control points, vehicle frame [m]
   std::vector<Eigen::Vector3d> velocities_mps;  ///< relative to the chassis, from positions [m/s]

@@ -1,5 +1,6 @@
 #pragma once
-// Built-in meshes made by our own code: the default car, a drinks can and a box. Deterministic: the
+// Built-in meshes made by our own code: the default car, a drinks can and a box (part of deform_io, the
+// types VehicleModel and WheelPart are plain data every layer uses). Deterministic: the
 // same parameters give bit-identical meshes on every run.
 #include <deform/mesh.hpp>
 

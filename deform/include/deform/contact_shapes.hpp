@@ -13,6 +13,7 @@ struct HalfSpaceShape {
   double offset_m = 0;              ///< plane: normal . x = offset_m [m]
 };
 
+/// A solid ball.
 struct SphereShape {
   Eigen::Vector3d centre_m{0, 0, 0};  ///< [m]
   double radius_m = 0;                ///< [m]
@@ -43,6 +44,7 @@ struct ConvexSupportShape {
   double bounding_radius_m = 0;       ///< every point of the shape is this close to centre_m [m]
 };
 
+/// Any obstacle a control point may not be inside.
 using ContactShape = std::variant<HalfSpaceShape, SphereShape, BoxShape, CapsuleShape, ConvexSupportShape>;
 
 /// How to push a point out of an obstacle: move it by depth_m along normal.
@@ -76,7 +78,7 @@ class ConvexPoints {
  public:
   /// Throws InputError for no points or a non-finite one.
   explicit ConvexPoints(std::vector<Eigen::Vector3d> points_m);
-  ConvexSupportShape shape() const;
+  ConvexSupportShape shape() const;  ///< the hull as a support shape (refers to this object)
 
  private:
   static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction);

@@ -18,6 +18,7 @@ struct ControlEdge {
   uint32_t left = 0, right = 0;
 };
 
+/// The control mesh: the points a body deforms by, on a closed convex surface (buildControlMesh).
 struct ControlMesh {
   std::vector<Eigen::Vector3d> points_m;           ///< rest positions of the control points [m]
   std::vector<std::array<uint32_t, 3>> triangles;  ///< closed convex surface, outward (CCW) winding
@@ -32,6 +33,7 @@ struct ControlMesh {
   std::vector<uint32_t> mirror_of;
 };
 
+/// How evenly the control points cover the surface (controlMeshStats).
 struct ControlMeshStats {
   /// Radius of the largest hole: the largest distance from a point of the control surface to its
   /// nearest control point [m]. For an even spread of N points over area A it is near sqrt(A / N).
@@ -80,6 +82,7 @@ LodMethod parseLodMethod(const std::string& text, const std::string& field);
 ControlMesh triangulateOnConvexSurface(const std::vector<Eigen::Vector3d>& points,
                                        const char* source = "mesh");
 
+/// Gaps, edge lengths and area of `mesh`.
 ControlMeshStats controlMeshStats(const ControlMesh& mesh);
 
 /// Recomputes edges (with wings), volume and centre of mass from points_m and triangles.

@@ -60,6 +60,7 @@ struct BodyEnergy {
   double total_J() const { return kinetic_J + elastic_J; }
 };
 
+/// Kinetic and elastic energy of `state` relative to the chassis [J].
 BodyEnergy bodyEnergy(const BodySettings& settings, const BodyState& state);
 
 /// Largest |x - x0| over the control points [m].
@@ -70,6 +71,8 @@ double maxDeviation(const BodySettings& settings, const BodyState& state);
 /// or stress locked in by the visual constraint.
 double constraintStrainRms(const BodySettings& settings, const BodyState& state);
 
+/// One deformable body: shared immutable settings, its own state, and the XPBD step that moves it. Step it
+/// once per engine step with the obstacles in its frame; read the reaction on the core from the report.
 class DeformableBody {
  public:
   /// Throws InputError for bad solver parameters.
@@ -80,11 +83,11 @@ class DeformableBody {
   /// contact shape.
   StepReport step(const StepInputs& inputs, double dt_s);
 
-  const BodySettings& settings() const { return *settings_; }
-  const BodyState& state() const { return state_; }
+  const BodySettings& settings() const { return *settings_; }  ///< the shared, immutable part
+  const BodyState& state() const { return state_; }            ///< positions, rest lengths, time now
   /// Replaces the state (a restored snapshot or a decoded damage record); sizes must match.
   void setState(BodyState state);
-  const SolverParams& params() const { return params_; }
+  const SolverParams& params() const { return params_; }  ///< substeps, iterations, damping, sleep
   /// Elastic energy at the forces the last substep's solve carried, sum 1/2 alpha F^2 with F = |lambda| /
   /// h^2 (XPBD eq. 18) [J]. Equal to 1/2 C^2 / alpha (bodyEnergy) where the solve converged; where it did
   /// not (a stiff constraint on light points), C is mostly error the solve has not yet corrected, not

@@ -20,6 +20,7 @@
 
 namespace deform {
 
+/// What a body is made of, in units that do not depend on the level of detail (see above).
 struct Material {
   /// Crush strength: the pressure the structure behind the skin puts up while it crushes (the plateau of
   /// its force-crush curve per unit of skin area) [Pa = N/m^2]; 0 = no load path to the core.

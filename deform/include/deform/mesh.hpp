@@ -9,7 +9,7 @@
 
 namespace deform {
 
-using Triangle = std::array<uint32_t, 3>;
+using Triangle = std::array<uint32_t, 3>;  ///< three vertex indices, counter-clockwise from outside
 
 /// A triangle mesh in the vehicle frame (DESIGN.md section 2): metres, X forward, Y left, Z up.
 /// Positions are float (render data); physics uses double.
@@ -21,12 +21,13 @@ struct Mesh {
 
 /// Axis-aligned bounding box [m].
 struct Aabb {
-  Eigen::Vector3d min_m{0, 0, 0};
-  Eigen::Vector3d max_m{0, 0, 0};
+  Eigen::Vector3d min_m{0, 0, 0};  ///< lowest corner [m]
+  Eigen::Vector3d max_m{0, 0, 0};  ///< highest corner [m]
   Eigen::Vector3d size_m() const { return max_m - min_m; }
   double diagonal_m() const { return size_m().norm(); }
 };
 
+/// The box around every vertex of `mesh` [m].
 Aabb boundingBox(const Mesh& mesh);
 
 /// Area-weighted vertex normals from the triangles (replaces mesh.normals). Each vertex sums its

@@ -49,6 +49,7 @@ Eigen::Vector3d axisVector(Axis axis);
 /// left). Throws InputError starting with `source` when the two axes are not perpendicular.
 Eigen::Matrix3d vehicleFrameRotation(Axis up, Axis forward, const std::string& source);
 
+/// How a file becomes a vehicle model: scale and the file's axes.
 struct ImportOptions {
   double scale = 1.0;           ///< multiplies file units to get metres; must be > 0
   std::optional<Axis> up;       ///< file's up axis; default per format (see above)

@@ -7,12 +7,14 @@
 
 namespace deform {
 
+/// `threads`, or the hardware concurrency (at least 1) for 0.
 inline unsigned resolveThreads(unsigned threads) {
   if (threads != 0) return threads;
   unsigned hw = std::thread::hardware_concurrency();
   return hw == 0 ? 1 : hw;
 }
 
+/// Calls fn(begin, end) over contiguous chunks of [0, count) on up to `threads` threads (0: all cores).
 template <class Fn>
 void parallelFor(std::size_t count, unsigned threads, Fn&& fn) {
   threads = resolveThreads(threads);

@@ -27,6 +27,7 @@ const char* skinMethodName(SkinMethod method);
 /// The method named `name` ("idw" or "mls"), or false when there is none.
 bool parseSkinMethod(const std::string& name, SkinMethod& method);
 
+/// How the skin's weights are built (Skin::build).
 struct SkinOptions {
   double alpha = 3.5;                   ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
   std::size_t k_nearest = 8;            ///< influences per vertex; 0 means dense (every control point)

@@ -10,9 +10,10 @@ namespace deform {
 
 /// x -> centre + linear (x - centre) + translation, positions in metres.
 struct AffineMap {
-  Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();  ///< [-]
-  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();     ///< [-]
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();       ///< [m]
+  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();  ///< [m]
+  /// The map applied to `x_m` [m].
   Eigen::Vector3d operator()(const Eigen::Vector3d& x_m) const {
     return centre_m + linear * (x_m - centre_m) + translation_m;
   }
@@ -28,12 +29,14 @@ double affineReproductionErrorMax(const Skin& skin, const std::vector<Eigen::Vec
                                   const std::vector<Eigen::Vector3d>& control_rest_m, const AffineMap& map,
                                   unsigned threads = 0);
 
+/// How far a skin's weights stray from [0, 1] (mls weights may be negative).
 struct SkinWeightSpread {
   double largest_abs_weight = 0;  ///< max |w_ij| over all slots [-] (1 at most for idw)
   double smallest_weight = 0;     ///< min w_ij [-] (>= 0 for idw)
   double negative_fraction = 0;   ///< share of the used slots (w != 0) whose weight is below zero [-]
 };
 
+/// The spread of every used slot's weight of `skin`.
 SkinWeightSpread skinWeightSpread(const Skin& skin);
 
 }  // namespace deform

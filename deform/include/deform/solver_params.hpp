@@ -5,6 +5,7 @@
 
 namespace deform {
 
+/// The solver's knobs per body (DeformableBody's constructor, setParams).
 struct SolverParams {
   /// Substeps per step (Macklin et al. 2019, "Small Steps"): each does prediction, `iterations`
   /// Gauss-Seidel sweeps, the visual constraint, plasticity and the velocity update. >= 1.

@@ -25,6 +25,7 @@ struct ChassisMotion {
   Eigen::Vector3d gravity_mps2{0, 0, 0};                 ///< in the vehicle frame; 0 = no sag [m/s^2]
 };
 
+/// Everything that acts on the body during one step (DeformableBody::step), in the vehicle frame.
 struct StepInputs {
   /// Obstacles this step, where they are at the END of the step (vehicle frame).
   std::vector<ContactShape> contacts;

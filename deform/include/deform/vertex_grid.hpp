@@ -9,6 +9,7 @@
 
 namespace deform {
 
+/// Rest positions bucketed in cubic cells, for the vertices near a box.
 class VertexGrid {
  public:
   VertexGrid() = default;

@@ -9,6 +9,7 @@
 
 namespace deform {
 
+/// Cached triangle normals of a mesh, for partial normal updates.
 class VertexNormals {
  public:
   /// The triangles around each vertex of `mesh` (its triangles never change afterwards).

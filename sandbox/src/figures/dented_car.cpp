@@ -1,11 +1,11 @@
 #include "dented_car.hpp"
 
-#include <deform/heat_colours.hpp>
 #include <scenes/car_skin.hpp>
 #include <scenes/scene_file.hpp>
 
 #include <filesystem>
 
+#include "render/heat_colours.hpp"
 #include "render/renderer.hpp"
 #include "render/vehicle_meshes.hpp"
 #include "run_render.hpp"

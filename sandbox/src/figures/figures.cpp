@@ -2,7 +2,6 @@
 
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
-#include <deform/heat_colours.hpp>
 #include <deform/skin.hpp>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 
 #include "flat_mesh.hpp"
 #include "image_tiles.hpp"
+#include "render/heat_colours.hpp"
 #include "render/renderer.hpp"
 #include "render/vehicle_meshes.hpp"
 

@@ -1,7 +1,6 @@
 // The skin's share of what the viewer sees after the wall crash: the same crash (the physics does not
 // depend on the skin) embedded by the idw and by the mls skin, side by side, and the front profile of
 // each (front_profile.hpp).
-#include <deform/heat_colours.hpp>
 #include <scenes/scene_file.hpp>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "front_profile.hpp"
 #include "image_tiles.hpp"
 #include "plot.hpp"
+#include "render/heat_colours.hpp"
 
 namespace sandbox::figures {
 namespace {

@@ -1,6 +1,6 @@
 #include "render/colour_ramp.hpp"
 
-#include <deform/heat_colours.hpp>
+#include "render/heat_colours.hpp"
 
 #include <cmath>
 

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -65,6 +66,14 @@ class SceneRun {
 
   /// One physics step with every car's drive inputs (does nothing once finished).
   void step();
+  /// From the next step on, car `car` takes `input` instead of its drive script (a driver in the loop:
+  /// the Python module's drive()); std::nullopt hands it back to the script. The override is an input
+  /// from outside, like the script's keys: it is neither in stateHash() nor in the state file.
+  void overrideDriverInput(std::size_t car, std::optional<vehicle::DriverInput> input);
+  /// The input that overrides car `car`'s script, if any.
+  const std::optional<vehicle::DriverInput>& driverOverride(std::size_t car) const {
+    return cars_[car].override_input;
+  }
   /// Steps until the simulated time reaches t_s (within half a step) or the scene ends.
   void stepUntil(double t_s);
   /// Steps to the end of the scene.
@@ -115,7 +124,8 @@ class SceneRun {
     vehicle::CarId id = 0;
     deform::VehicleModel model;
     DrivePlayer driver;
-    double lateral_speed_mps = 0;  ///< pushed in on the first step
+    double lateral_speed_mps = 0;                        ///< pushed in on the first step
+    std::optional<vehicle::DriverInput> override_input;  ///< replaces the script while set
   };
   SceneConfig scene_;
   /// One simulation step with every car's drive inputs.
@@ -133,6 +143,11 @@ class SceneRun {
   double frame_time_s_ = 0;  ///< sum of advance()'s frames [s]
   StageTimes times_;
 };
+
+/// The scene a state file was saved from: the scene file's path as the run had it (SceneConfig::source),
+/// so that a run can be resumed without naming its scene again. Throws deform::InputError naming `path`
+/// when it cannot be read or is not a state file (the full checks are restoreState's).
+std::string stateFileSceneSource(const std::string& path);
 
 /// "0123456789abcdef": a state hash as 16 hex digits.
 std::string hashHex(uint64_t hash);

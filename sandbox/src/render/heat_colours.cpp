@@ -1,4 +1,4 @@
-#include <deform/heat_colours.hpp>
+#include "render/heat_colours.hpp"
 
 #include <algorithm>
 #include <cmath>

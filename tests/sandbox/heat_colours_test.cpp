@@ -1,8 +1,8 @@
-#include <deform/heat_colours.hpp>
+#include "render/heat_colours.hpp"
 
 #include <catch2/catch.hpp>
 
-#include "point_sets.hpp"
+#include "deform/point_sets.hpp"
 
 TEST_CASE("heat colours run from blue (none) to red (most)", "[colours]") {
   const Eigen::Vector3f none = deform::heatColour(0.0f), most = deform::heatColour(1.0f);

@@ -1,6 +1,7 @@
 #pragma once
 // Per-vertex colours for looking at the embedding and the damage: the paper's figures colour the car
-// by how much each vertex moved (red most, blue none) and by one control point's influence.
+// by how much each vertex moved (red most, blue none) and by one control point's influence. Part of
+// sandbox (drawing only; an engine taking deform does not need them), still in namespace deform.
 #include <deform/skin.hpp>
 
 #include <Eigen/Core>
