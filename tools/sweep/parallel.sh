@@ -11,24 +11,9 @@
 # parallel before the command (e.g. --sshloginfile FILE, --retries 2). SANDBOX overrides the binary
 # (default build/bin/sandbox of this repository). Exit: that of the merge, or 1 when a shard failed.
 set -uo pipefail
-if [[ $# -lt 2 || ! $2 =~ ^[1-9][0-9]*$ ]]; then
-  echo "usage: $0 PLAN N [--runs DIR] [--result DIR] [GNU parallel options...]" >&2
-  exit 2
-fi
-plan=$(realpath "$1")
-shards=$2
-shift 2
-[[ -f $plan ]] || { echo "$0: $plan: no such plan" >&2; exit 2; }
-runs=${plan%.jsonl}.runs
-result=${plan%.jsonl}.result
-parallel_options=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --runs) runs=$(realpath -m "$2"); shift 2 ;;
-    --result) result=$(realpath -m "$2"); shift 2 ;;
-    *) parallel_options+=("$1"); shift ;;
-  esac
-done
+source "$(dirname "$0")/plan_args.sh"
+read_plan_args "GNU parallel options" "$@"
+parallel_options=("${passed_options[@]}")
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 sandbox=$(realpath "${SANDBOX:-$repo/build/bin/sandbox}")
 command -v parallel > /dev/null || { echo "$0: GNU parallel is not installed (tools/setup.sh)" >&2; exit 2; }

@@ -10,24 +10,9 @@
 # overrides the binary (default build/bin/sandbox of this repository, by absolute path).
 #   tools/sweep/submit.sh plan.jsonl 40 --partition=short
 set -euo pipefail
-if [[ $# -lt 2 || ! $2 =~ ^[1-9][0-9]*$ ]]; then
-  echo "usage: $0 PLAN N [--runs DIR] [--result DIR] [sbatch options...]" >&2
-  exit 2
-fi
-plan=$(realpath "$1")
-shards=$2
-shift 2
-[[ -f $plan ]] || { echo "$0: $plan: no such plan" >&2; exit 2; }
-runs=${plan%.jsonl}.runs
-result=${plan%.jsonl}.result
-sbatch_options=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --runs) runs=$(realpath -m "$2"); shift 2 ;;
-    --result) result=$(realpath -m "$2"); shift 2 ;;
-    *) sbatch_options+=("$1"); shift ;;
-  esac
-done
+source "$(dirname "$0")/plan_args.sh"
+read_plan_args "sbatch options" "$@"
+sbatch_options=("${passed_options[@]}")
 here=$(cd "$(dirname "$0")" && pwd)
 sandbox=$(realpath "${SANDBOX:-$here/../../build/bin/sandbox}")
 [[ -x $sandbox ]] || { echo "$0: $sandbox: not built (make build)" >&2; exit 2; }
