@@ -12,17 +12,14 @@
 
 namespace deform {
 
-void exportMesh(const deform::Mesh& mesh, const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const bool glb = extension == ".glb";
-  if (!glb && extension != ".obj") {
-    throw InputError("--out: " + path + ": unknown format (give a .glb or .obj file)");
-  }
+namespace {
+
+/// `mesh` as a one-mesh assimp scene written in assimp's format `format_id`; `gltf_axes`: turned from the
+/// vehicle frame into glTF's (Y up, front along +Z).
+void writeScene(const Mesh& mesh, const std::string& format_id, const std::string& path, bool gltf_axes) {
   // A glTF asset is Y up with its front along +Z, so +X is the car's left: (x, y, z)_glTF = (y, z, x).
-  const auto convert = [glb](const Eigen::Vector3f& v) {
-    return glb ? aiVector3D(v.y(), v.z(), v.x()) : aiVector3D(v.x(), v.y(), v.z());
+  const auto convert = [gltf_axes](const Eigen::Vector3f& v) {
+    return gltf_axes ? aiVector3D(v.y(), v.z(), v.x()) : aiVector3D(v.x(), v.y(), v.z());
   };
   aiScene scene;  // owns everything below and frees it
   scene.mRootNode = new aiNode();
@@ -53,9 +50,26 @@ void exportMesh(const deform::Mesh& mesh, const std::string& path) {
     for (unsigned int k = 0; k < 3; ++k) face.mIndices[k] = mesh.triangles[f][k];
   }
   Assimp::Exporter exporter;
-  if (exporter.Export(&scene, glb ? "glb2" : "obj", path) != AI_SUCCESS) {
+  if (exporter.Export(&scene, format_id, path) != AI_SUCCESS) {
     throw std::runtime_error(path + ": cannot write (" + exporter.GetErrorString() + ")");
   }
+}
+
+}  // namespace
+
+void exportMesh(const deform::Mesh& mesh, const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const bool glb = extension == ".glb";
+  if (!glb && extension != ".obj") {
+    throw InputError("--out: " + path + ": unknown format (give a .glb or .obj file)");
+  }
+  writeScene(mesh, glb ? "glb2" : "obj", path, glb);
+}
+
+void exportMeshAs(const deform::Mesh& mesh, const std::string& format_id, const std::string& path) {
+  writeScene(mesh, format_id, path, false);
 }
 
 }  // namespace deform

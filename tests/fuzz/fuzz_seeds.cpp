@@ -4,12 +4,12 @@
 // both, and a glTF tetrahedron with its buffer inline; for the scene target the shipped scenes with --set
 // overrides after NUL bytes (the input layout fuzz_scene.cpp reads).
 #include <deform/builtin_meshes.hpp>
+#include <deform/mesh_export.hpp>
 #include <scenes/scene_file.hpp>
 
-#include <assimp/scene.h>
-#include <assimp/Exporter.hpp>
-
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -19,37 +19,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// `mesh` as a one-mesh assimp scene (as deform::exportMesh builds it), written in assimp format `format`.
+/// `mesh` written in assimp format `format` (deform::exportMeshAs); a failure ends the program.
 void exportAs(const deform::Mesh& mesh, const std::string& format, const fs::path& path) {
-  aiScene scene;  // owns everything below and frees it
-  scene.mRootNode = new aiNode();
-  scene.mRootNode->mName = "box";
-  scene.mMaterials = new aiMaterial* [1] { new aiMaterial() };
-  scene.mNumMaterials = 1;
-  auto* out = new aiMesh();
-  scene.mMeshes = new aiMesh* [1] { out };
-  scene.mNumMeshes = 1;
-  scene.mRootNode->mMeshes = new unsigned int[1]{0};
-  scene.mRootNode->mNumMeshes = 1;
-  out->mMaterialIndex = 0;
-  out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-  out->mNumVertices = static_cast<unsigned int>(mesh.positions_m.size());
-  out->mVertices = new aiVector3D[out->mNumVertices];
-  for (unsigned int i = 0; i < out->mNumVertices; ++i) {
-    const Eigen::Vector3f& p = mesh.positions_m[i];
-    out->mVertices[i] = aiVector3D(p.x(), p.y(), p.z());
-  }
-  out->mNumFaces = static_cast<unsigned int>(mesh.triangles.size());
-  out->mFaces = new aiFace[out->mNumFaces];
-  for (unsigned int f = 0; f < out->mNumFaces; ++f) {
-    out->mFaces[f].mNumIndices = 3;
-    out->mFaces[f].mIndices =
-        new unsigned int[3]{mesh.triangles[f][0], mesh.triangles[f][1], mesh.triangles[f][2]};
-  }
   fs::create_directories(path.parent_path());
-  Assimp::Exporter exporter;
-  if (exporter.Export(&scene, format, path.string()) != AI_SUCCESS) {
-    std::fprintf(stderr, "%s: cannot write (%s)\n", path.string().c_str(), exporter.GetErrorString());
+  try {
+    deform::exportMeshAs(mesh, format, path.string());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
     std::exit(1);
   }
 }

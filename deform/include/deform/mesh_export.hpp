@@ -13,4 +13,9 @@ namespace deform {
 /// another extension, std::runtime_error with assimp's message when writing fails.
 void exportMesh(const deform::Mesh& mesh, const std::string& path);
 
+/// Writes `mesh` as it is (no change of axes) in assimp's export format `format_id` ("obj", "stl", "stlb",
+/// "ply", "plyb", "glb2", ...; Assimp::Exporter lists them) to `path`, whatever its extension. Throws
+/// std::runtime_error with assimp's message when writing fails.
+void exportMeshAs(const deform::Mesh& mesh, const std::string& format_id, const std::string& path);
+
 }  // namespace deform
