@@ -100,7 +100,7 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
             previous_m_[i] + h * obstacleVelocity(inputs, static_cast<uint32_t>(k), previous_m_[i]);
         if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
           enteredAt(shape, start_m, x[i], p);
-        contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal});
+        contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, x[i] + p.depth_m * p.normal, start_m});
         inside += p.depth_m > 0;
         if (surface && p.depth_m > 0) touched_[i] = 1;
       }

@@ -386,9 +386,7 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     for (ContactPoint& c : contacts_) {
       const Eigen::Vector3d before = x[c.point];
       // Friction holds the point to the obstacle's surface, which moves (and turns) in this frame.
-      const Eigen::Vector3d& start = previous_m_[c.point];
-      projectContact(x[c.point], start + h * obstacleVelocity(inputs, c.shape, start), c.normal, c.surface_m,
-                     inputs.contact_friction);
+      projectContact(x[c.point], c.carried_start_m, c.normal, c.surface_m, inputs.contact_friction);
       c.moved_m += x[c.point] - before;
       movedBy(c.shape, c.point, x[c.point] - before);
     }

@@ -140,6 +140,8 @@ class DeformableBody {
     uint32_t point;
     Eigen::Vector3d normal;
     Eigen::Vector3d surface_m;
+    /// Where the point began the substep, carried along with the obstacle's surface (friction's anchor).
+    Eigen::Vector3d carried_start_m;
     Eigen::Vector3d moved_m{0, 0, 0};  ///< the correction's displacement of the point this substep
   };
 
