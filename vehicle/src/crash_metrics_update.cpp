@@ -24,9 +24,9 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     if (mt.diverged) mt.diverged_at_s = world.time_s();
   }
 
-  if (!mt.impacted && !dc.touching.empty()) {
-    // First impact with the first thing touched: velocities before the step, positions now.
-    const EntityRef other = dc.touching.front();
+  if (!mt.impacted && !dc.hit.empty()) {
+    // First impact with the first thing hit: velocities before the step, positions now.
+    const EntityRef other = dc.hit.front();
     mt.impacted = true;
     dc.impact_other = other;
     dc.impact_relative_velocity_mps = velocity_before - velocityBefore(other);
@@ -50,8 +50,12 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     for (const CarContact& c : world.carContacts(dc.id))
       if (c.other == dc.impact_other)
         dc.impact_normal_sum += (c.depth_m + 1e-6) * (car.vehiclePose().orientation * c.normal);
-    if (dc.impact_normal_sum.norm() > 1e-12) {
-      dc.impact_normal = dc.impact_normal_sum.normalized();
+    // Before ODE reports a contact (the body met it within the step, crush_coupling's addApproaching),
+    // the normal is the approach's: against the relative velocity.
+    Eigen::Vector3d normal = dc.impact_normal_sum;
+    if (normal.norm() <= 1e-12) normal = -dc.impact_relative_velocity_mps;
+    if (normal.norm() > 1e-12) {
+      dc.impact_normal = normal.normalized();
       // Crash tests measure along the road: a mostly horizontal normal is taken horizontal, so the car's
       // pitching and bouncing do not count as rebound.
       const Eigen::Vector3d horizontal_normal(dc.impact_normal.x(), dc.impact_normal.y(), 0);
@@ -75,8 +79,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   if (!mt.impacted) return;
   // The rebound is the separation speed: measured while the car touches what it hit and in the step it
   // leaves it, never afterwards (a car steering away from a wall it grazed is not a rebound).
-  const bool in_contact =
-      std::find(dc.touching.begin(), dc.touching.end(), dc.impact_other) != dc.touching.end();
+  const bool in_contact = std::find(dc.hit.begin(), dc.hit.end(), dc.impact_other) != dc.hit.end();
   const Eigen::Vector3d relative = car.velocity_mps() - velocityOf(dc.impact_other);
   if (in_contact || dc.in_contact)
     mt.rebound_speed_mps = std::max(mt.rebound_speed_mps, relative.dot(dc.impact_normal));

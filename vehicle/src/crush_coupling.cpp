@@ -27,6 +27,47 @@ bool standsOnGround(const ObstacleShape& shape) {
   return true;
 }
 
+void Simulation::Impl::addApproaching(DeformableCar& dc) const {
+  // ODE collides before it integrates: its contacts are where the car was when the step began, so an
+  // obstacle the car reaches during the step would reach deform a step late, with the control points
+  // already inside it, and their push-out would throw them back (energy from nowhere). Everything
+  // crushable whose box comes within this step's travel of the points' box is handed to deform now; its
+  // contacts are exact within the substeps, so one that is not reached does nothing.
+  const Car& car = world.car(dc.id);
+  const Pose frame = car.vehiclePose();
+  const double dt = world.fixedDt_s();
+  const auto& points = dc.body->state().positions_m;
+  if (points.empty()) return;
+  Eigen::Vector3d low = points.front(), high = points.front();
+  double fastest_point_mps = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    low = low.cwiseMin(points[i]);
+    high = high.cwiseMax(points[i]);
+    fastest_point_mps = std::max(fastest_point_mps, dc.body->state().velocities_mps[i].norm());
+  }
+  const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
+  const double reach_m = 0.5 * (high - low).norm();
+  const EntityRef self{EntityRef::Kind::Car, dc.id};
+  auto consider = [&](EntityRef other) {
+    if (other == self || !crushable(world, other) ||
+        std::find(dc.touching.begin(), dc.touching.end(), other) != dc.touching.end())
+      return;
+    const ObstacleShape local = transformShape(worldShapeOf(other), frame);
+    const double closing_mps = (velocityOf(other, core_world_m) - velocityOf(self, core_world_m)).norm() +
+                               (angularVelocityOf(other) - car.angularVelocity_rad_s()).norm() * reach_m +
+                               fastest_point_mps;
+    const double margin_m = closing_mps * dt + kApproachMargin_m;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d u = Eigen::Vector3d::Unit(axis);
+      if (supportPoint(local, u)[axis] < low[axis] - margin_m) return;
+      if (supportPoint(local, -u)[axis] > high[axis] + margin_m) return;
+    }
+    dc.touching.push_back(other);
+  };
+  for (ObstacleId o = 0; o < world.obstacleCount(); ++o) consider({EntityRef::Kind::Obstacle, o});
+  for (CarId c = 0; c < world.carCount(); ++c) consider({EntityRef::Kind::Car, c});
+}
+
 void Simulation::Impl::stepCar(DeformableCar& dc) {
   Car& car = world.car(dc.id);
   const Pose frame = car.vehiclePose();
@@ -35,12 +76,15 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   const std::vector<CarContact> contacts = world.carContacts(dc.id);
   const bool crush = dc.settings.coupling == Coupling::Crush;
 
-  // What the car touches (not the ground, not ramps), each once.
+  // What the car touches (not the ground, not ramps), each once: in ODE's contacts, or within reach of
+  // the control points during this step.
   dc.touching.clear();
   for (const CarContact& c : contacts)
     if (crushable(world, c.other) &&
         std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
       dc.touching.push_back(c.other);
+  const std::size_t in_ode_contact = dc.touching.size();
+  addApproaching(dc);
 
   // The obstacles where they are at the end of the step (vehicle frame), with their motion relative to
   // the chassis (the velocity of their point at the core, and their turn): deform moves them along it
@@ -67,6 +111,11 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
         normal += c.normal;
         deepest_m = std::max(deepest_m, c.depth_m);
       }
+    // Not yet in ODE's contacts (addApproaching): if it closes on the car, it comes along its relative
+    // motion; one moving away is not swept (the sweep would reach back into the car).
+    const bool closing_in = relative_mps.dot(dc.body_settings->core_m - interiorPoint(local)) > 0;
+    if (normal.norm() <= 1e-12 && closing_in && relative_mps.norm() > 1e-9)
+      normal = relative_mps.normalized();
     Eigen::Vector3d sweep{0, 0, 0};
     if (normal.norm() > 1e-12) {
       normal.normalize();
@@ -143,6 +192,11 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   dc.contact_work_J += report.contact_work_J;
   dc.inertial_work_J += report.inertial_work_J;
   dc.contact_loss_J += report.contact_loss_J;
+  dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(in_ode_contact));
+  for (std::size_t k = in_ode_contact; k < dc.touching.size(); ++k)
+    if (k < report.contact_impulse_per_obstacle_Ns.size() &&
+        report.contact_impulse_per_obstacle_Ns[k].squaredNorm() > 0)
+      dc.hit.push_back(dc.touching[k]);
 
   // Reaction, equal and opposite in this step: the momentum the body handed its core goes to the chassis
   // (and the core's travel within the step to its position); the momentum the obstacles gave the points

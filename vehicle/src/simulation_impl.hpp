@@ -34,7 +34,10 @@ struct DeformableCar {
   std::shared_ptr<const deform::BodySettings> body_settings;
   std::unique_ptr<deform::DeformableBody> body;
   CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
-  std::vector<EntityRef> touching;  ///< crushable entities in contact this step
+  std::vector<EntityRef> touching;  ///< crushable entities in contact or within reach this step
+  /// Of those, what the car met this step: in ODE's contacts, or pushing the body's points (the metrics'
+  /// impact and rebound window; one within reach but missed is not an impact).
+  std::vector<EntityRef> hit;
   /// Its control points in the world before this step's deformation: what other cars dent against
   /// (taken for every car first, so the order cars are stepped in does not matter).
   ObstacleShape world_shape;
@@ -143,6 +146,9 @@ struct Simulation::Impl {
   double carKineticEnergy(const DeformableCar& dc) const;
 
   void stepCar(DeformableCar& dc);
+  /// Adds to dc.touching what its control points can reach within this step (crush_coupling.cpp).
+  void addApproaching(DeformableCar& dc) const;
+  static constexpr double kApproachMargin_m = 0.01;
   /// One car's coupling and metrics bookkeeping, and its body's state (simulation_state.cpp).
   void saveCar(StateWriter& out, const DeformableCar& dc) const;
   void restoreCar(StateReader& in, DeformableCar& dc);

@@ -128,6 +128,7 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
     *x = in.real();
   // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
   dc.touching.clear();
+  dc.hit.clear();
   dc.shapes.clear();
   dc.world_shape = ObstacleShape{};
 }

@@ -182,7 +182,6 @@ class DeformableBody {
     Eigen::Vector3d normal;
   };
   std::vector<HeldPoint> held_;
-  std::vector<uint8_t> touched_;         ///< per point: in contact with the obstacle being searched
   std::vector<ContactShape> placed_;     ///< the obstacles where they are in the current substep
   std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
