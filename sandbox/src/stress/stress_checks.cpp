@@ -39,7 +39,12 @@ RunVerdict checkRun(const scenes::SceneRun& run) {
       const double tolerance_J = 0.02 * e.kinetic_initial_J + 1.0;
       // Energy not created: every measured term together (plastic work, viscous and contact losses,
       // elastic energy, ODE's work) explains no more than the whole car lost.
-      if (e.balance_error_J < -tolerance_J) verdict.fail(car + "the body took more energy than the car lost");
+      if (e.balance_error_J < -tolerance_J) {
+        char amount[96];
+        std::snprintf(amount, sizeof amount, " (by %.3g J, %.2g %% of the impact's)", -e.balance_error_J,
+                      100 * -e.balance_error_J / e.kinetic_initial_J);
+        verdict.fail(car + "the body took more energy than the car lost" + amount);
+      }
       // Nor did the body's plastic work and viscous loss exceed the work done on it in the chassis's
       // frame: the obstacles' and the inertial forces' (a chassis stopped rigidly throws its shell forward).
       if (e.plastic_work_J + e.damping_loss_J > e.contact_work_J + e.inertial_work_J + tolerance_J)

@@ -89,14 +89,13 @@ struct DeformationSettings {
   double visual_impulse_scale = 0.05;
   Coupling coupling = Coupling::Crush;
   /// Force-limited constraints (deform::SolverParams::yield_limited): no constraint carries more than its
-  /// yield force, and a held point at its cap stops the chassis rigidly. Off (the default until the stress
-  /// rows docs/CRASH_CALIBRATION.md lists pass with it): the solve carries whatever force its iterations
-  /// reach, and the energy account does not close.
-  bool yield_limited = false;
+  /// yield force, and a held point at its cap stops the chassis rigidly. Off: the solve carries whatever
+  /// force its iterations reach (the older model, kept for comparison).
+  bool yield_limited = true;
   /// Crush columns held at a rest place, resisting by the volume their patch sweeps
-  /// (deform::BodyDescription::anchored_columns); off: spokes along the patch's normal. With
-  /// yield_limited, the wall crash converges in N (docs/CRASH_CALIBRATION.md).
-  bool anchored_columns = false;
+  /// (deform::BodyDescription::anchored_columns); off: spokes along the patch's normal (the older model).
+  /// With yield_limited, the wall crash converges in N (docs/CRASH_CALIBRATION.md).
+  bool anchored_columns = true;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
