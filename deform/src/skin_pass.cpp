@@ -1,7 +1,6 @@
 // The per-frame skin pass v'_j = v_j + sum_k w_jk d_(i_jk) (Kenwright 2015, equation 1) over the layouts of
-// skin_layout.cpp. It is memory-bound (docs/BENCHMARKS.md): the slots are read once, the displacement
-// table (a few hundred points) stays in L1, and a full pass over a large mesh writes its output with
-// non-temporal stores, so the output's cache lines are not first read from memory.
+// skin_layout.cpp. The slots are read once and the displacement table (a few hundred points) stays in L1.
+// Streaming (non-temporal) stores of the output were tried and did not pay here (docs/BENCHMARKS.md).
 #include <deform/skin.hpp>
 
 #include <cstdint>
@@ -12,9 +11,6 @@
 
 namespace deform {
 namespace {
-
-/// Outputs past this many bytes are written with streaming stores: well past what stays in the caches.
-constexpr std::size_t kStreamingOutputBytes = std::size_t{4} << 20;
 
 // Slot readers: index and weight (as a float: the fixed-point integer, exact in float) of slot s.
 // weights4: slots s .. s + 3's weights in one register, converted together (the same values as weightAt).
@@ -57,7 +53,7 @@ struct Packed24Slots {
 
 // Every form sums the even and the odd influences separately and adds the two sums to the rest position:
 // two short dependency chains instead of one long one, and the same order of operations in all, so the
-// scalar, SSE and streaming forms give bit-identical results.
+// scalar and SSE forms give bit-identical results.
 
 /// One vertex, scalar.
 template <class Slots>
@@ -113,59 +109,32 @@ inline __m128 displacementSum(const Slots& slots, std::size_t first, std::size_t
 
 template <std::size_t KFixed, class Slots>
 void deformRangeImpl(const Slots& slots, std::size_t K_runtime, const Eigen::Vector3f* rest, const float* d,
-                     Eigen::Vector3f* out, std::size_t begin, std::size_t end, bool stream) {
+                     Eigen::Vector3f* out, std::size_t begin, std::size_t end) {
   const std::size_t K = KFixed ? KFixed : K_runtime;
   std::size_t j = begin;
 #if defined(__SSE2__)
-  if (stream && reinterpret_cast<uintptr_t>(out) % 4 == 0) {
-    // Four vertices are 48 bytes, three aligned 16-byte streaming stores once out + j is 16-byte aligned.
-    for (; j < end && reinterpret_cast<uintptr_t>(out + j) % 16 != 0; ++j)
-      deformVertexScalar(slots, j * K, K, rest[j], d, out[j]);
-    for (; j + 4 <= end; j += 4) {
-      const __m128 s0 = displacementSum<KFixed>(slots, j * K, K, d);
-      const __m128 s1 = displacementSum<KFixed>(slots, (j + 1) * K, K, d);
-      const __m128 s2 = displacementSum<KFixed>(slots, (j + 2) * K, K, d);
-      const __m128 s3 = displacementSum<KFixed>(slots, (j + 3) * K, K, d);
-      // (x0 y0 z0 x1) (y1 z1 x2 y2) (z2 x3 y3 z3)
-      const __m128 z0x1 = _mm_shuffle_ps(s0, s1, _MM_SHUFFLE(0, 0, 2, 2));
-      const __m128 o0 = _mm_shuffle_ps(s0, z0x1, _MM_SHUFFLE(2, 0, 1, 0));
-      const __m128 o1 = _mm_shuffle_ps(s1, s2, _MM_SHUFFLE(1, 0, 2, 1));
-      const __m128 z2x3 = _mm_shuffle_ps(s2, s3, _MM_SHUFFLE(0, 0, 2, 2));
-      const __m128 o2 = _mm_shuffle_ps(z2x3, s3, _MM_SHUFFLE(2, 1, 2, 0));
-      const float* r = rest[j].data();
-      float* o = out[j].data();
-      _mm_stream_ps(o, _mm_add_ps(_mm_loadu_ps(r), o0));
-      _mm_stream_ps(o + 4, _mm_add_ps(_mm_loadu_ps(r + 4), o1));
-      _mm_stream_ps(o + 8, _mm_add_ps(_mm_loadu_ps(r + 8), o2));
-    }
-    for (; j < end; ++j) deformVertexScalar(slots, j * K, K, rest[j], d, out[j]);
-    _mm_sfence();  // streaming stores are weakly ordered: make them visible before the join
-    return;
-  }
   // 16-byte stores of a 12-byte vertex touch the next vertex's x: the last vertex of the range is done in
   // scalar form so a neighbouring range (another thread) is never written.
   for (; j + 1 < end; ++j)
     _mm_storeu_ps(out[j].data(),
                   _mm_add_ps(_mm_loadu_ps(rest[j].data()), displacementSum<KFixed>(slots, j * K, K, d)));
-#else
-  (void)stream;
 #endif
   for (; j < end; ++j) deformVertexScalar(slots, j * K, K, rest[j], d, out[j]);
 }
 
 template <class Slots>
 void dispatchK(const Slots& slots, std::size_t K, const Eigen::Vector3f* rest, const float* d,
-               Eigen::Vector3f* out, std::size_t begin, std::size_t end, bool stream) {
+               Eigen::Vector3f* out, std::size_t begin, std::size_t end) {
   if (begin >= end) return;
   switch (K) {
     case 4:
-      return deformRangeImpl<4>(slots, K, rest, d, out, begin, end, stream);
+      return deformRangeImpl<4>(slots, K, rest, d, out, begin, end);
     case 8:
-      return deformRangeImpl<8>(slots, K, rest, d, out, begin, end, stream);
+      return deformRangeImpl<8>(slots, K, rest, d, out, begin, end);
     case 16:
-      return deformRangeImpl<16>(slots, K, rest, d, out, begin, end, stream);
+      return deformRangeImpl<16>(slots, K, rest, d, out, begin, end);
     default:
-      return deformRangeImpl<0>(slots, K, rest, d, out, begin, end, stream);
+      return deformRangeImpl<0>(slots, K, rest, d, out, begin, end);
   }
 }
 
@@ -184,35 +153,34 @@ std::vector<float, Eigen::aligned_allocator<float>> scaledTable(const Eigen::Vec
 }  // namespace
 
 void Skin::deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
-                       std::size_t begin, std::size_t end, bool stream) const {
+                       std::size_t begin, std::size_t end) const {
   const std::size_t K = influences_;
   switch (weight_format_) {
     case WeightFormat::packed24:
-      return dispatchK(Packed24Slots{packed_.data()}, K, rest_m, scaled_xyz0, out_m, begin, end, stream);
+      return dispatchK(Packed24Slots{packed_.data()}, K, rest_m, scaled_xyz0, out_m, begin, end);
     case WeightFormat::unorm16:
       if (index_bytes_ == 1)
         return dispatchK(Unorm16Slots<uint8_t>{indices8_.data(), weights16_.data()}, K, rest_m, scaled_xyz0,
-                         out_m, begin, end, stream);
+                         out_m, begin, end);
       if (index_bytes_ == 2)
         return dispatchK(Unorm16Slots<uint16_t>{indices16_.data(), weights16_.data()}, K, rest_m, scaled_xyz0,
-                         out_m, begin, end, stream);
+                         out_m, begin, end);
       return dispatchK(Unorm16Slots<uint32_t>{indices32_.data(), weights16_.data()}, K, rest_m, scaled_xyz0,
-                       out_m, begin, end, stream);
+                       out_m, begin, end);
     case WeightFormat::float32:
       if (index_bytes_ == 2)
         return dispatchK(FloatSlots<uint16_t>{indices16_.data(), weights_.data()}, K, rest_m, scaled_xyz0,
-                         out_m, begin, end, stream);
+                         out_m, begin, end);
       return dispatchK(FloatSlots<uint32_t>{indices32_.data(), weights_.data()}, K, rest_m, scaled_xyz0,
-                       out_m, begin, end, stream);
+                       out_m, begin, end);
   }
 }
 
 void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
                   Eigen::Vector3f* out_m, unsigned threads) const {
   const auto table = scaledTable(displacement_m, control_count_, weight_scale_);
-  const bool stream = vertex_count_ * sizeof(Eigen::Vector3f) >= kStreamingOutputBytes;
   parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
-    deformRange(rest_m, table.data(), out_m, begin, end, stream);
+    deformRange(rest_m, table.data(), out_m, begin, end);
   });
 }
 
@@ -240,7 +208,7 @@ std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector
       while (j < end && !dirty[j]) ++j;
       std::size_t run_end = j;
       while (run_end < end && dirty[run_end]) ++run_end;
-      if (j < run_end) deformRange(rest_m, table.data(), out_m, j, run_end, false);
+      if (j < run_end) deformRange(rest_m, table.data(), out_m, j, run_end);
       j = run_end;
     }
   });

@@ -99,9 +99,8 @@ class Skin {
  private:
   enum class WeightFormat : uint8_t { float32, unorm16, packed24 };
   /// The pass over vertices [begin, end); `scaled_xyz0` holds d_i / weightScale() as x, y, z, 0 floats.
-  /// `stream`: non-temporal stores of the output (a full pass over a large mesh).
   void deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
-                   std::size_t begin, std::size_t end, bool stream) const;
+                   std::size_t begin, std::size_t end) const;
   /// The float weights (as built) re-stored in the layout asked for.
   void storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices);
 
