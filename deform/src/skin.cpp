@@ -1,4 +1,5 @@
-// Building the embedding weights (skin_weights.cpp) and the per-frame deform pass.
+// Building the embedding weights (skin_weights.cpp); their storage is in skin_layout.cpp, the per-frame
+// pass in skin_pass.cpp.
 #include <deform/error.hpp>
 #include <deform/skin.hpp>
 
@@ -11,10 +12,6 @@
 
 #include "nearest_points.hpp"
 #include "skin_weights.hpp"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace deform {
 const char* skinMethodName(SkinMethod method) {
@@ -48,10 +45,11 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   skin.alpha_ = options.alpha;
   skin.method_ = options.method;
   skin.influences_ = options.k_nearest == 0 ? n : std::min(options.k_nearest, n);
-  skin.wide_indices_ = n > 65536;
+  skin.layout_ = options.layout;
   const std::size_t slots = skin.vertex_count_ * skin.influences_;
-  (skin.wide_indices_ ? skin.indices32_.resize(slots) : skin.indices16_.resize(slots));
-  skin.weights_.resize(slots);
+  // Built in float and 32-bit indices, then re-stored in the layout asked for (skin_layout.cpp).
+  std::vector<uint32_t> built_indices(slots);
+  std::vector<float> built_weights(slots);
 
   const std::size_t K = skin.influences_;
   // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
@@ -103,16 +101,14 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
       else
         detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
       for (std::size_t k = 0; k < K; ++k) {
-        const std::size_t s = j * K + k;
-        if (skin.wide_indices_)
-          skin.indices32_[s] = chosen[k];
-        else
-          skin.indices16_[s] = static_cast<uint16_t>(chosen[k]);
-        skin.weights_[s] = static_cast<float>(weight[k]);
+        built_indices[j * K + k] = chosen[k];
+        built_weights[j * K + k] = static_cast<float>(weight[k]);
       }
     }
   });
-  // Reverse index (counting sort by control point); slots with zero weight influence nothing.
+  skin.storeCompact(built_weights, built_indices);
+  // Reverse index (counting sort by control point); slots with zero weight (after rounding) influence
+  // nothing.
   skin.influenced_begin_.assign(n + 1, 0);
   for (std::size_t j = 0; j < skin.vertex_count_; ++j)
     for (std::size_t k = 0; k < K; ++k)
@@ -131,143 +127,6 @@ float Skin::weight(std::size_t j, uint32_t i) const {
   for (std::size_t k = 0; k < influences_; ++k)
     if (slotIndex(j, k) == i) return slotWeight(j, k);
   return 0.0f;
-}
-
-std::size_t Skin::memoryBytes() const {
-  return weights_.size() * sizeof(float) + indices16_.size() * sizeof(uint16_t) +
-         indices32_.size() * sizeof(uint32_t);
-}
-
-std::size_t Skin::bytesPerVertex() const {
-  const std::size_t index_bytes = wide_indices_ ? 4 : 2;
-  return 2 * sizeof(Eigen::Vector3f) + influences_ * (index_bytes + sizeof(float));
-}
-
-void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
-                  Eigen::Vector3f* out_m, unsigned threads) const {
-  // Displacements as x, y, z, 0 floats: one aligned 16-byte load per influence, and the whole table of a
-  // few hundred control points stays in L1.
-  std::vector<float> packed(4 * control_count_);
-  for (std::size_t i = 0; i < control_count_; ++i) {
-    packed[4 * i + 0] = static_cast<float>(displacement_m[i].x());
-    packed[4 * i + 1] = static_cast<float>(displacement_m[i].y());
-    packed[4 * i + 2] = static_cast<float>(displacement_m[i].z());
-    packed[4 * i + 3] = 0.0f;
-  }
-  parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
-    deformRange(rest_m, packed.data(), out_m, begin, end);
-  });
-}
-
-std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
-                              const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m, unsigned threads,
-                              std::vector<uint8_t>* recomputed_flags) const {
-  std::vector<uint8_t> local;
-  std::vector<uint8_t>& dirty = recomputed_flags ? *recomputed_flags : local;
-  dirty.assign(vertex_count_, 0);
-  std::size_t influenced = 0;
-  for (std::size_t i = 0; i < control_count_ && i < moved.size(); ++i) {
-    if (!moved[i]) continue;
-    for (std::size_t s = influenced_begin_[i]; s < influenced_begin_[i + 1]; ++s)
-      dirty[influenced_vertices_[s]] = 1;
-    influenced += influenced_begin_[i + 1] - influenced_begin_[i];
-  }
-  if (influenced == 0) return 0;
-  std::vector<float> packed(4 * control_count_);
-  for (std::size_t i = 0; i < control_count_; ++i)
-    for (int a = 0; a < 3; ++a)
-      packed[4 * i + static_cast<std::size_t>(a)] = static_cast<float>(displacement_m[i][a]);
-  std::size_t recomputed = 0;
-  for (uint8_t d : dirty) recomputed += d;
-  parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
-    // Runs of dirty vertices go through the same pass as a full deform, so the results are identical.
-    std::size_t j = begin;
-    while (j < end) {
-      while (j < end && !dirty[j]) ++j;
-      std::size_t run_end = j;
-      while (run_end < end && dirty[run_end]) ++run_end;
-      if (j < run_end) deformRange(rest_m, packed.data(), out_m, j, run_end);
-      j = run_end;
-    }
-  });
-  return recomputed;
-}
-
-namespace {
-
-// Both forms sum the even and the odd influences separately and add the two sums to the rest position:
-// two short dependency chains instead of one long one, and the same order of operations in both, so the
-// scalar and the SSE forms give bit-identical results.
-
-/// One vertex, scalar: v'_j = v_j + sum_k w_jk d_(i_jk).
-template <class Index>
-inline void deformVertexScalar(const Eigen::Vector3f& rest, const Index* idx, const float* w, std::size_t K,
-                               const float* d, Eigen::Vector3f& out) {
-  float even[3] = {0, 0, 0}, odd[3] = {0, 0, 0};
-  for (std::size_t k = 0; k < K; ++k) {
-    const float* di = d + 4 * static_cast<std::size_t>(idx[k]);
-    float* sum = (k % 2 == 0) ? even : odd;
-    for (int a = 0; a < 3; ++a) sum[a] += w[k] * di[a];
-  }
-  out = Eigen::Vector3f(rest.x() + (even[0] + odd[0]), rest.y() + (even[1] + odd[1]),
-                        rest.z() + (even[2] + odd[2]));
-}
-
-template <std::size_t KFixed, class Index>
-void deformRangeImpl(const Eigen::Vector3f* rest, const Index* indices, const float* weights,
-                     std::size_t K_runtime, const float* d, Eigen::Vector3f* out, std::size_t begin,
-                     std::size_t end) {
-  const std::size_t K = KFixed ? KFixed : K_runtime;
-  if (begin >= end) return;
-  std::size_t j = begin;
-#if defined(__SSE2__)
-  // 16-byte loads and stores of a 12-byte vertex touch the next vertex's x: the last vertex of the range
-  // is done in scalar form so a neighbouring range (another thread) is never written.
-  for (; j + 1 < end; ++j) {
-    const Index* idx = indices + j * K;
-    const float* w = weights + j * K;
-    __m128 even = _mm_setzero_ps(), odd = _mm_setzero_ps();
-    std::size_t k = 0;
-    for (; k + 1 < K; k += 2) {
-      even = _mm_add_ps(even,
-                        _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
-      odd = _mm_add_ps(
-          odd, _mm_mul_ps(_mm_set1_ps(w[k + 1]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k + 1]))));
-    }
-    if (k < K)
-      even = _mm_add_ps(even,
-                        _mm_mul_ps(_mm_set1_ps(w[k]), _mm_load_ps(d + 4 * static_cast<std::size_t>(idx[k]))));
-    _mm_storeu_ps(out[j].data(), _mm_add_ps(_mm_loadu_ps(rest[j].data()), _mm_add_ps(even, odd)));
-  }
-#endif
-  for (; j < end; ++j) deformVertexScalar(rest[j], indices + j * K, weights + j * K, K, d, out[j]);
-}
-
-template <class Index>
-void dispatchK(const Eigen::Vector3f* rest, const Index* indices, const float* weights, std::size_t K,
-               const float* d, Eigen::Vector3f* out, std::size_t begin, std::size_t end) {
-  switch (K) {
-    case 4:
-      return deformRangeImpl<4>(rest, indices, weights, K, d, out, begin, end);
-    case 8:
-      return deformRangeImpl<8>(rest, indices, weights, K, d, out, begin, end);
-    case 16:
-      return deformRangeImpl<16>(rest, indices, weights, K, d, out, begin, end);
-    default:
-      return deformRangeImpl<0>(rest, indices, weights, K, d, out, begin, end);
-  }
-}
-
-}  // namespace
-
-void Skin::deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m,
-                       Eigen::Vector3f* out_m, std::size_t begin, std::size_t end) const {
-  if (wide_indices_)
-    dispatchK(rest_m, indices32_.data(), weights_.data(), influences_, displacement_xyz0_m, out_m, begin,
-              end);
-  else
-    dispatchK(rest_m, indices16_.data(), weights_.data(), influences_, displacement_xyz0_m, out_m, begin,
-              end);
 }
 
 }  // namespace deform

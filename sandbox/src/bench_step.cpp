@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "baselines/bullet_peer.hpp"
 #include "commands.hpp"
 #include "step_cost.hpp"
 
@@ -35,6 +36,7 @@ struct BenchStepFlags {
   double mass_kg = 1500;
   bool anchored_columns = false;  ///< deform::BodyDescription::anchored_columns
   bool yield_limited = false;     ///< deform::SolverParams::yield_limited
+  std::string peer;  ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
   bool json = false;
 };
 
@@ -48,6 +50,8 @@ void check(const BenchStepFlags& f) {
   if (!(std::isfinite(f.dt_s) && f.dt_s > 0)) throw deform::InputError("--dt: must be finite and > 0");
   if (!(std::isfinite(f.mass_kg) && f.mass_kg > 0))
     throw deform::InputError("--mass-kg: must be finite and > 0");
+  if (!f.peer.empty() && f.peer != "bullet")
+    throw deform::InputError("--peer: only \"bullet\" (got \"" + f.peer + "\")");
 }
 
 void runBenchStep(const BenchStepFlags& f) {
@@ -94,6 +98,17 @@ void runBenchStep(const BenchStepFlags& f) {
   r["wall_us_per_step"] = median_wall_us;
   r["ns_per_constraint_iteration"] = ns_per;
   r["max_deviation_m"] = cost.max_deviation_m;
+  if (f.peer == "bullet") {
+    const baselines::PeerStepCost peer = baselines::bulletPeerStepCost(
+        *settings, f.mass_kg, f.substeps, f.iterations, f.warmup, f.steps, f.dt_s);
+    r["peer"] = {{"name", "bullet"},
+                 {"nodes", peer.nodes},
+                 {"links", peer.links},
+                 {"us_per_step", peer.us_per_step},
+                 {"ns_per_constraint_iteration", peer.ns_per_constraint_iteration},
+                 {"finite", peer.finite},
+                 {"ratio", ns_per / peer.ns_per_constraint_iteration}};
+  }
   if (f.json) {
     std::printf("%s\n", r.dump(2).c_str());
     return;
@@ -107,6 +122,15 @@ void runBenchStep(const BenchStepFlags& f) {
       "  median %.2f us per step (thread CPU time; wall %.2f us), %.2f ns per constraint per iteration "
       "(%zu steps)\n",
       median_us, median_wall_us, ns_per, f.steps);
+  if (r.contains("peer")) {
+    const auto& peer = r["peer"];
+    std::printf(
+        "  peer bullet: btSoftBody, %zu nodes, %zu links, no contact: %.2f us per step, %.2f ns per "
+        "constraint per iteration%s\n  ratio (ours / bullet) %.2f\n",
+        peer["nodes"].get<std::size_t>(), peer["links"].get<std::size_t>(), peer["us_per_step"].get<double>(),
+        peer["ns_per_constraint_iteration"].get<double>(), peer["finite"].get<bool>() ? "" : " (DIVERGED)",
+        peer["ratio"].get<double>());
+  }
 }
 
 }  // namespace
@@ -130,6 +154,7 @@ void registerBenchStepCommand(CLI::App& bench) {
                  "Crush columns held at a rest place (scene key anchored_columns)");
   step->add_flag("--yield-limited", flags->yield_limited,
                  "Force-limited constraints (scene key yield_limited)");
+  step->add_option("--peer", flags->peer, "Also run the same body in a peer engine: bullet (btSoftBody)");
   step->add_flag("--json", flags->json, "Print one JSON object");
   step->callback([flags] { runBenchStep(*flags); });
 }

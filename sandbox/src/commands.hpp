@@ -19,6 +19,8 @@ void registerFiguresCommand(CLI::App& app);
 
 /// `sandbox bench step` (deformation dynamics), in bench_step.cpp.
 void registerBenchStepCommand(CLI::App& bench);
+/// `sandbox bench memory` (bytes per control point and vertex, RSS of many cars), in bench_memory.cpp.
+void registerBenchMemoryCommand(CLI::App& bench);
 /// `sandbox bench grid` (vertices against control points), in cmd_bench_grid.cpp.
 void registerBenchGridCommand(CLI::App& bench);
 /// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.

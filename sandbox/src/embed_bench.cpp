@@ -1,5 +1,7 @@
 #include "embed_bench.hpp"
 
+#include "embed_plain.hpp"
+
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
@@ -8,6 +10,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,6 +19,11 @@ namespace sandbox {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
 
 template <class Fn>
 double medianMs(int repetitions, Fn&& fn) {
@@ -25,8 +34,7 @@ double medianMs(int repetitions, Fn&& fn) {
     fn();
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
   }
-  std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
-  return ms[ms.size() / 2];
+  return median(ms);
 }
 
 /// The simplest sparse loop a user might write first: one struct per vertex holding its position and its
@@ -47,6 +55,9 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   if (o.control_points < 4) throw deform::InputError("--control-points: at least 4");
   if (o.k > 65536) throw deform::InputError("--k: at most 65536 (0 means dense)");
   if (o.repetitions < 1) throw deform::InputError("--repetitions: at least 1");
+  if (o.rounds < 1) throw deform::InputError("--rounds: at least 1");
+  if (o.control_points > 65536)
+    throw deform::InputError("--control-points: at most 65536 (the plain kernel)");
   const unsigned threads = deform::resolveThreads(o.threads);
 
   const deform::VehicleModel car = deform::makeSedan(o.vertices);
@@ -54,28 +65,68 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : rest) points.push_back(p.cast<double>());
   const deform::ControlMesh control = deform::buildControlMesh(points, o.control_points, "builtin:sedan");
-  Clock::time_point build_start = Clock::now();
-  const deform::Skin skin = deform::Skin::build(rest, control.points_m, {o.alpha, o.k, threads});
-  const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - build_start).count();
+  const auto buildSkin = [&](deform::SkinMethod method, deform::SkinLayout layout, double* build_ms) {
+    const Clock::time_point start = Clock::now();
+    deform::Skin built = deform::Skin::build(rest, control.points_m, {o.alpha, o.k, threads, method, layout});
+    if (build_ms) *build_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    return built;
+  };
+  double build_ms = 0, mls_build_ms = 0;
+  const deform::Skin skin = buildSkin(deform::SkinMethod::idw, deform::SkinLayout::compact, &build_ms);
+  const deform::Skin skin_float =
+      buildSkin(deform::SkinMethod::idw, deform::SkinLayout::float_weights, nullptr);
+  const deform::Skin mls = buildSkin(deform::SkinMethod::mls, deform::SkinLayout::compact, &mls_build_ms);
+  const deform::Skin mls_float =
+      buildSkin(deform::SkinMethod::mls, deform::SkinLayout::float_weights, nullptr);
 
   // A dent-like displacement field: every control point moved, so no work is skipped.
   std::vector<Eigen::Vector3d> displacement(control.points_m.size());
   for (std::size_t i = 0; i < displacement.size(); ++i)
     displacement[i] =
         -0.05 * control.points_m[i].normalized() * (1.0 + 0.1 * std::sin(static_cast<double>(i)));
-  std::vector<Eigen::Vector3f> out(rest.size());
-  const double ms =
-      medianMs(o.repetitions, [&] { skin.deform(rest.data(), displacement.data(), out.data(), threads); });
+  std::vector<PlainPoint> plain_displacement;
+  for (const auto& d : displacement)
+    plain_displacement.push_back(
+        {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())});
+
+  // The passes, alternated round by round so that each round's ratio pairs passes measured moments apart
+  // (the machine is shared: its state moves the figures more than the code does).
+  const PlainSkin plain = makePlainSkin(skin_float, rest);
+  std::vector<PlainPoint> out_plain(rest.size());
+  std::vector<Eigen::Vector3f> out(rest.size()), out_mls(rest.size()), out_other(rest.size());
+  struct Pass {
+    const char* name;
+    std::function<void()> run;
+    std::vector<double> ms;
+  };
+  std::vector<Pass> passes = {
+      {"plain", [&] { plainSkinPass(plain, plain_displacement, out_plain, threads); }, {}},
+      {"idw", [&] { skin.deform(rest.data(), displacement.data(), out.data(), threads); }, {}},
+      {"idw_float",
+       [&] { skin_float.deform(rest.data(), displacement.data(), out_other.data(), threads); },
+       {}},
+      {"mls", [&] { mls.deform(rest.data(), displacement.data(), out_mls.data(), threads); }, {}},
+      {"mls_float",
+       [&] { mls_float.deform(rest.data(), displacement.data(), out_other.data(), threads); },
+       {}},
+  };
+  std::vector<double> ratio_idw, ratio_mls;
+  for (int round = 0; round < o.rounds; ++round) {
+    for (Pass& pass : passes) pass.ms.push_back(medianMs(o.repetitions, pass.run));
+    ratio_idw.push_back(passes[0].ms.back() / passes[1].ms.back());
+    ratio_mls.push_back(passes[0].ms.back() / passes[3].ms.back());
+  }
+  const double ms = median(passes[1].ms), plain_ms = median(passes[0].ms), mls_ms = median(passes[3].ms);
 
   // Streaming copy, same threads: the bandwidth bound. Source and destination of 128 MB each at least,
   // four times a large last-level cache, so the copy runs from memory as the pass does.
   const std::size_t bytes_per_vertex = skin.bytesPerVertex();
   const std::size_t copy_floats =
-      std::max<std::size_t>(rest.size() * bytes_per_vertex / 8, std::size_t{32} << 20);
+      std::max<std::size_t>(rest.size() * plain.bytesPerVertex() / 8, std::size_t{32} << 20);
   std::vector<float> src(copy_floats, 1.0f), dst(copy_floats, 0.0f);
   const double copy_ms = medianMs(o.repetitions, [&] {
     deform::parallelFor(copy_floats, threads, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) dst[i] = src[i];
+      std::memcpy(dst.data() + b, src.data() + b, (e - b) * sizeof(float));
     });
   });
   const double copy_bytes_per_ms = 2.0 * static_cast<double>(copy_floats * sizeof(float)) / copy_ms;
@@ -85,7 +136,7 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   for (std::size_t j = 0; j < rest.size(); ++j) {
     aos[j].rest_m = rest[j];
     for (std::size_t k = 0; k < skin.influences(); ++k)
-      aos[j].influences.push_back({skin.slotIndex(j, k), skin.slotWeight(j, k)});
+      aos[j].influences.push_back({skin_float.slotIndex(j, k), skin_float.slotWeight(j, k)});
   }
   std::vector<Eigen::Vector3f> out_aos(rest.size());
   const double aos_ms = medianMs(o.repetitions, [&] {
@@ -97,19 +148,25 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
       }
     });
   });
-  double disagreement_m = 0;
-  for (std::size_t j = 0; j < out.size(); ++j)
-    disagreement_m = std::max(disagreement_m, static_cast<double>((out[j] - out_aos[j]).norm()));
-
-  // The same pass over affine moving-least-squares weights (deform/skin.hpp, SkinMethod::mls).
-  build_start = Clock::now();
-  const deform::Skin mls =
-      deform::Skin::build(rest, control.points_m, {o.alpha, o.k, threads, deform::SkinMethod::mls});
-  const double mls_build_ms = std::chrono::duration<double, std::milli>(Clock::now() - build_start).count();
-  const double mls_ms =
-      medianMs(o.repetitions, [&] { mls.deform(rest.data(), displacement.data(), out.data(), threads); });
+  // Precision against double: the float weights accumulated in double stand for the exact pass (their
+  // own rounding, 6e-8 relative, is far below the fixed-point step).
+  double disagreement_m = 0, mls_disagreement_m = 0;
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    Eigen::Vector3d mls_exact = rest[j].cast<double>();
+    for (std::size_t k = 0; k < mls_float.influences(); ++k)
+      mls_exact += static_cast<double>(mls_float.slotWeight(j, k)) * displacement[mls_float.slotIndex(j, k)];
+    Eigen::Vector3d idw_exact = rest[j].cast<double>();
+    for (const Influence& inf : aos[j].influences) idw_exact += inf.weight * displacement[inf.control];
+    disagreement_m = std::max(disagreement_m, (out[j].cast<double>() - idw_exact).norm());
+    mls_disagreement_m = std::max(mls_disagreement_m, (out_mls[j].cast<double>() - mls_exact).norm());
+  }
 
   const double pass_bytes_per_ms = static_cast<double>(bytes_per_vertex * rest.size()) / ms;
+  const auto spread = [](const std::vector<double>& v) {
+    return nlohmann::ordered_json{{"median", median(v)},
+                                  {"min", *std::min_element(v.begin(), v.end())},
+                                  {"max", *std::max_element(v.begin(), v.end())}};
+  };
   nlohmann::ordered_json r;
   r["vertices"] = rest.size();
   r["control_points"] = control.points_m.size();
@@ -117,20 +174,36 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
   r["threads"] = threads;
   r["alpha"] = o.alpha;
   r["repetitions"] = o.repetitions;
+  r["rounds"] = o.rounds;
   r["ms"] = ms;
   r["vertices_per_ms"] = static_cast<double>(rest.size()) / ms;
   r["bytes_per_vertex"] = bytes_per_vertex;
   r["gb_per_s"] = pass_bytes_per_ms / 1e6;
   r["copy_gb_per_s"] = copy_bytes_per_ms / 1e6;
   r["bandwidth_fraction"] = pass_bytes_per_ms / copy_bytes_per_ms;
+  r["max_error_vs_double_m"] = disagreement_m;
+  r["plain"] = {{"ms", plain_ms},
+                {"vertices_per_ms", static_cast<double>(rest.size()) / plain_ms},
+                {"bytes_per_vertex", plain.bytesPerVertex()},
+                {"bandwidth_fraction",
+                 static_cast<double>(plain.bytesPerVertex() * rest.size()) / plain_ms / copy_bytes_per_ms}};
+  r["speedup_vs_plain"] = spread(ratio_idw);
+  r["float_layout"] = {{"ms", median(passes[2].ms)},
+                       {"bytes_per_vertex", skin_float.bytesPerVertex()},
+                       {"mls_ms", median(passes[4].ms)},
+                       {"mls_bytes_per_vertex", mls_float.bytesPerVertex()}};
   r["baseline_aos_ms"] = aos_ms;
   r["speedup_vs_aos"] = aos_ms / ms;
-  r["aos_max_difference_m"] = disagreement_m;
   r["skin_build_ms"] = build_ms;
   r["skin_bytes"] = skin.memoryBytes();
+  r["skin_reverse_index_bytes"] = skin.reverseIndexBytes();
   r["mls"] = {{"skin_build_ms", mls_build_ms},
               {"ms", mls_ms},
-              {"vertices_per_ms", static_cast<double>(rest.size()) / mls_ms}};
+              {"vertices_per_ms", static_cast<double>(rest.size()) / mls_ms},
+              {"bytes_per_vertex", mls.bytesPerVertex()},
+              {"speedup_vs_plain", spread(ratio_mls)},
+              {"max_error_vs_double_m", mls_disagreement_m},
+              {"skin_bytes", mls.memoryBytes()}};
   return r;
 }
 

@@ -27,12 +27,24 @@ const char* skinMethodName(SkinMethod method);
 /// The method named `name` ("idw" or "mls"), or false when there is none.
 bool parseSkinMethod(const std::string& name, SkinMethod& method);
 
+/// How a skin stores its weights (Skin::build). The per-frame pass is memory-bound (docs/BENCHMARKS.md):
+/// its cost follows the bytes it reads per vertex, so the compact form is the default.
+enum class SkinLayout : uint8_t {
+  /// Fixed-point weights whose integers sum exactly to the scale (so exactly to one), 8-bit indices up to
+  /// 256 control points: idw 16-bit weights (scale 65,535), 3 bytes a slot; mls (negative weights) a
+  /// signed 24-bit weight packed with its 8-bit index, 4 bytes a slot (mls past 256 points: float weights).
+  compact,
+  /// Float weights and 16-bit indices (32-bit past 65,536 points), 6 bytes a slot: the layout before.
+  float_weights,
+};
+
 /// How the skin's weights are built (Skin::build).
 struct SkinOptions {
-  double alpha = 3.5;                   ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
-  std::size_t k_nearest = 8;            ///< influences per vertex; 0 means dense (every control point)
-  unsigned threads = 0;                 ///< worker threads for build and deform; 0 = hardware concurrency
-  SkinMethod method = SkinMethod::idw;  ///< how the weights are chosen (idw: the paper's)
+  double alpha = 3.5;                       ///< inverse-distance power (paper: about 3-4); 0.5 .. 16 tested
+  std::size_t k_nearest = 8;                ///< influences per vertex; 0 means dense (every control point)
+  unsigned threads = 0;                     ///< worker threads for build and deform; 0 = hardware concurrency
+  SkinMethod method = SkinMethod::idw;      ///< how the weights are chosen (idw: the paper's)
+  SkinLayout layout = SkinLayout::compact;  ///< how they are stored
 };
 
 /// Weights of every render-mesh vertex: `influences()` slots per vertex, vertex-major, each slot a
@@ -48,17 +60,25 @@ class Skin {
   std::size_t influences() const { return influences_; }
   double alpha() const { return alpha_; }
   SkinMethod method() const { return method_; }
+  SkinLayout layout() const { return layout_; }
   /// Control point of slot k of vertex j (0 <= k < influences()).
-  uint32_t slotIndex(std::size_t j, std::size_t k) const {
-    const std::size_t s = j * influences_ + k;
-    return wide_indices_ ? indices32_[s] : indices16_[s];
-  }
-  /// Weight of slot k of vertex j.
-  float slotWeight(std::size_t j, std::size_t k) const { return weights_[j * influences_ + k]; }
+  uint32_t slotIndex(std::size_t j, std::size_t k) const;
+  /// Weight of slot k of vertex j: slotWeightFixed / weightScale in the fixed-point forms.
+  float slotWeight(std::size_t j, std::size_t k) const;
+  /// Whether the weights are fixed point (their integers of a vertex sum exactly to weightScale()).
+  bool fixedPointWeights() const { return weight_format_ != WeightFormat::float32; }
+  /// The fixed-point integer of slot k of vertex j (0 for float weights).
+  int64_t slotWeightFixed(std::size_t j, std::size_t k) const;
+  /// The integer that stands for a weight of one (1 for float weights).
+  int64_t weightScale() const { return weight_scale_; }
+  /// Bytes per slot of the index (1, 2 or 4).
+  std::size_t indexBytes() const { return index_bytes_; }
   /// Weight of control point `i` on vertex `j` (0 when not among its influences).
   float weight(std::size_t j, uint32_t i) const;
   /// Bytes of the weights and indices.
   std::size_t memoryBytes() const;
+  /// Bytes of the reverse index deformMoved uses (vertices each control point influences).
+  std::size_t reverseIndexBytes() const;
   /// Bytes one deform pass reads and writes per vertex (rest position, slots, output).
   std::size_t bytesPerVertex() const;
 
@@ -76,20 +96,30 @@ class Skin {
                           const std::vector<uint8_t>& moved, Eigen::Vector3f* out_m, unsigned threads = 0,
                           std::vector<uint8_t>* recomputed = nullptr) const;
 
-  /// Same pass restricted to vertices [begin, end); displacements packed as x, y, z, 0 floats.
-  void deformRange(const Eigen::Vector3f* rest_m, const float* displacement_xyz0_m, Eigen::Vector3f* out_m,
-                   std::size_t begin, std::size_t end) const;
-
  private:
+  enum class WeightFormat : uint8_t { float32, unorm16, packed24 };
+  /// The pass over vertices [begin, end); `scaled_xyz0` holds d_i / weightScale() as x, y, z, 0 floats.
+  void deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
+                   std::size_t begin, std::size_t end) const;
+  /// The float weights (as built) re-stored in the layout asked for.
+  void storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices);
+
   std::size_t vertex_count_ = 0;
   std::size_t control_count_ = 0;
   std::size_t influences_ = 0;
   double alpha_ = 0;
   SkinMethod method_ = SkinMethod::idw;
-  bool wide_indices_ = false;        ///< more than 65,536 control points: 32-bit indices
-  std::vector<uint16_t> indices16_;  ///< slot indices, vertex-major (narrow form; halves the traffic)
-  std::vector<uint32_t> indices32_;  ///< slot indices, vertex-major (wide form)
-  std::vector<float> weights_;       ///< slot weights, vertex-major; each vertex's sum is 1 (mls: some < 0)
+  SkinLayout layout_ = SkinLayout::compact;
+  WeightFormat weight_format_ = WeightFormat::float32;
+  uint8_t index_bytes_ = 2;
+  int64_t weight_scale_ = 1;
+  // Slots, vertex-major; only the arrays of the chosen form are filled.
+  std::vector<uint8_t> indices8_;    ///< up to 256 control points
+  std::vector<uint16_t> indices16_;  ///< up to 65,536
+  std::vector<uint32_t> indices32_;  ///< more
+  std::vector<float> weights_;       ///< float32: each vertex's sum is 1 to rounding (mls: some < 0)
+  std::vector<uint16_t> weights16_;  ///< unorm16: weight x 65,535, each vertex's sum exactly 65,535
+  std::vector<uint32_t> packed_;     ///< packed24: (weight x scale) << 8 | index, signed 24-bit weight
   /// Reverse index for partial updates: the vertices control point i influences are
   /// influenced_vertices_[influenced_begin_[i] .. influenced_begin_[i + 1]).
   std::vector<std::size_t> influenced_begin_;
