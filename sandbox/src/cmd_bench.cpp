@@ -58,6 +58,7 @@ void registerBenchCommands(CLI::App& app) {
 
   registerBenchStepCommand(*bench);
   registerBenchGridCommand(*bench);
+  registerBenchCarsCommand(*bench);
 }
 
 }  // namespace sandbox

@@ -110,7 +110,8 @@ render::Environment sceneEnvironment(const scenes::SceneRun& run) {
 
 RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig& outputs,
                          scenes::StageTimes& times)
-    : heatmap_(outputs.heatmap) {
+    : heatmap_(outputs.heatmap),
+      aspect_(static_cast<float>(outputs.width) / static_cast<float>(std::max(outputs.height, 1))) {
   auto start = Clock::now();
   const vehicle::Simulation& simulation = run.simulation();
   for (std::size_t i = 0; i < run.carCount(); ++i) {
@@ -164,12 +165,24 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   const vehicle::Simulation& simulation = run.simulation();
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
+  const render::Camera camera = sceneCamera(run);
   std::vector<bool> changed(cars_.size(), false);
   std::vector<std::vector<Eigen::Vector3d>> displacements_of(cars_.size());
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     displacements_of[i] = simulation.controlDisplacements(run.carId(i));
     const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
     scenes::CarSkin& skin = *cars_[i].skin;
+    // A car out of the camera's view is not embedded this frame (DESIGN.md section 8): its skin catches
+    // up, exactly, on the frame it comes into view (it recomputes what moved since its last update).
+    const deform::Aabb rest = skin.restBounds();
+    const vehicle::Pose pose = world.car(run.carId(i)).vehiclePose();
+    const Eigen::Vector3d centre_m = pose.toWorld(0.5 * (rest.min_m + rest.max_m));
+    // Grown by a diagonal for its shadow, which may fall into view from outside it.
+    const double radius_m = 1.5 * rest.diagonal_m() + skin.displacementBound_m(displacements);
+    if (!render::sphereInView(camera, aspect_, centre_m.cast<float>(), static_cast<float>(radius_m))) {
+      ++embeds_out_of_view_;
+      continue;
+    }
     obstacles_near_.gather(simulation, run.carId(i), skin.restBounds(),
                            skin.displacementBound_m(displacements));
     changed[i] = skin.update(displacements, obstacles_near_.shapes()) > 0;
@@ -203,7 +216,7 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   }
   for (const ObstacleMesh& o : obstacles_)
     renderer_->setTransform(o.mesh, matrixOf(world.obstaclePose(o.id)));
-  render::Image image = renderer_->renderImage(sceneCamera(run), environment_);
+  render::Image image = renderer_->renderImage(camera, environment_);
   times.render_ms += msSince(start);
   return image;
 }
