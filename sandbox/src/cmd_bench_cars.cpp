@@ -16,6 +16,9 @@ void registerBenchCarsCommand(CLI::App& bench) {
   cmd->add_option("--out", options->out_dir, "Folder for cars.csv, cars.md and cars.png")
       ->capture_default_str();
   cmd->add_flag("--quick", *quick, "1, 10 and 50 cars for 1 simulated second (well under a minute)");
+  cmd->add_flag(
+      "--skip-when-idle", options->skip_when_idle,
+      "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle)");
   cmd->add_option("--duration", options->duration_s, "Simulated seconds per run")->capture_default_str();
   cmd->callback([options, quick] {
     if (!(options->duration_s > 0 && options->duration_s <= 1e4))

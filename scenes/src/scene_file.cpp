@@ -149,6 +149,7 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
     s.yield_limited = object->boolean("yield_limited", s.yield_limited);
     s.anchored_columns = object->boolean("anchored_columns", s.anchored_columns);
+    s.skip_when_idle = object->boolean("skip_when_idle", s.skip_when_idle);
     object->finish();
   }
   d.settings.coupling = coupling;

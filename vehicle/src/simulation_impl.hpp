@@ -101,6 +101,11 @@ struct Simulation::Impl {
   /// Per car (index into cars): whether it touches another car or a free obstacle this step, so that its
   /// step reads or writes what another car's does (it then runs in the cars' order, on one thread).
   std::vector<uint8_t> coupledCars() const;
+  /// Per car (index into cars): nothing near it this step (simulation_step.cpp's broad phase: boxes of
+  /// the control points and obstacles grown by the step's travel; any contact but the ground's counts).
+  std::vector<uint8_t> idleCars() const;
+  /// Keeps an idle car's body asleep (DeformationSettings::skip_when_idle), or lets it wake as usual.
+  void holdAsleep(DeformableCar& dc, bool idle) const;
 
   explicit Impl(const WorldSettings& s) : world(s) {}
 

@@ -11,7 +11,7 @@
 
 namespace sandbox {
 
-std::string cruisingCarsScene(std::size_t cars, double duration_s, double physics_hz) {
+std::string cruisingCarsScene(std::size_t cars, double duration_s, double physics_hz, bool skip_when_idle) {
   constexpr std::size_t kLanes = 10;
   constexpr double kLaneWidth_m = 4.0, kRowGap_m = 15.0;
   nlohmann::json vehicles = nlohmann::json::array();
@@ -23,7 +23,8 @@ std::string cruisingCarsScene(std::size_t cars, double duration_s, double physic
                         {"mass_kg", 1500},
                         {"coupling", "crush"},
                         {"start", {{"position_m", {x_m, y_m}}, {"heading_deg", 0}, {"speed_kmh", 50}}},
-                        {"drive", {{"target_speed_kmh", 50}}}});
+                        {"drive", {{"target_speed_kmh", 50}}},
+                        {"deformation", {{"skip_when_idle", skip_when_idle}}}});
   }
   const nlohmann::json scene = {
       {"description", std::to_string(cars) + " built-in sedans cruising at 50 km/h, no obstacle"},
@@ -37,7 +38,8 @@ std::vector<CarsBenchRow> runCarsBench(const CarsBenchOptions& options) {
   using Clock = std::chrono::steady_clock;
   std::vector<CarsBenchRow> rows;
   for (std::size_t cars : options.cars) {
-    const std::string text = cruisingCarsScene(cars, options.duration_s, options.physics_hz);
+    const std::string text =
+        cruisingCarsScene(cars, options.duration_s, options.physics_hz, options.skip_when_idle);
     for (int threads : options.threads) {
       scenes::SceneConfig scene = scenes::parseSceneText(text, "bench_cars_" + std::to_string(cars), {}, ".");
       scene.threads = threads;

@@ -15,6 +15,7 @@ struct CarsBenchOptions {
   double duration_s = 5.0;   ///< simulated time per run [s]
   double physics_hz = 60.0;  ///< [Hz]
   std::string out_dir = "out/bench_cars";
+  bool skip_when_idle = false;  ///< the cars' vehicle.deformation.skip_when_idle
 };
 
 struct CarsBenchRow {
@@ -29,7 +30,7 @@ struct CarsBenchRow {
 };
 
 /// The scene it runs: `cars` sedans in rows of ten lanes 4 m apart, 15 m between rows (JSON text).
-std::string cruisingCarsScene(std::size_t cars, double duration_s, double physics_hz);
+std::string cruisingCarsScene(std::size_t cars, double duration_s, double physics_hz, bool skip_when_idle);
 
 /// Runs every (cars, threads) pair, in that order.
 std::vector<CarsBenchRow> runCarsBench(const CarsBenchOptions& options);

@@ -101,8 +101,9 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
 
   std::ostringstream md;
   md << "Built-in sedans (20k vertices, 60 control points) cruising at 50 km/h under speed control, "
-     << fixed(options.physics_hz, 0) << " Hz, " << fixed(options.duration_s, 1)
-     << " s simulated, no obstacle. Stages in wall ms per simulated second.\n\n"
+     << fixed(options.physics_hz, 0) << " Hz, " << fixed(options.duration_s, 1) << " s simulated, no obstacle"
+     << (options.skip_when_idle ? ", idle cars skipped (`skip_when_idle`)" : "")
+     << ". Stages in wall ms per simulated second.\n\n"
      << "| cars | threads | set-up ms | tyres | collide | solve | deform | coupling | metrics | step | x "
         "real "
         "time | hash same on all thread counts |\n"

@@ -97,6 +97,13 @@ struct DeformationSettings {
   /// (deform::BodyDescription::anchored_columns); off: spokes along the patch's normal. With
   /// yield_limited, the wall crash converges in N (docs/CRASH_CALIBRATION.md).
   bool anchored_columns = false;
+  /// Idle cars cost nothing (DESIGN.md section 8): with nothing near the car (a broad phase over the
+  /// bounding boxes of every car's control points and every obstacle, grown by the step's travel) its
+  /// body, once deform has put it to sleep, stays asleep whatever the chassis's accelerations do: the
+  /// shell is carried rigidly and no solver step runs until something comes near. Off (the default, and
+  /// every shipped scene's physics): the body wakes on any change of its inertial load above
+  /// deform::SolverParams::wake_load_mps2, which a car on its suspension does nearly every step.
+  bool skip_when_idle = false;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
