@@ -7,6 +7,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <tuple>
 
 #include "render/heat_colours.hpp"
 #include "render/vehicle_meshes.hpp"
@@ -114,11 +117,20 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
       aspect_(static_cast<float>(outputs.width) / static_cast<float>(std::max(outputs.height, 1))) {
   auto start = Clock::now();
   const vehicle::Simulation& simulation = run.simulation();
+  // Cars of one build (the same loaded model and shared control mesh) with the same skin settings share
+  // one set of weights (DESIGN.md section 8); the addresses stay put for the run.
+  using SkinKey = std::tuple<const void*, const void*, double, std::size_t, int>;
+  std::map<SkinKey, std::shared_ptr<const deform::Skin>> skins;
   for (std::size_t i = 0; i < run.carCount(); ++i) {
     CarMeshes car;
     const vehicle::CarId id = run.carId(i);
-    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, simulation.controlRestPoints(id),
-                                                 simulation.deformationSettings(id));
+    const vehicle::DeformationSettings& settings = simulation.deformationSettings(id);
+    const SkinKey key{&run.model(i).body, &simulation.controlRestPoints(id), settings.alpha,
+                      settings.k_nearest, static_cast<int>(settings.skin_method)};
+    std::shared_ptr<const deform::Skin>& skin = skins[key];
+    if (!skin)
+      skin = scenes::CarSkin::buildSkin(run.model(i).body, simulation.controlRestPoints(id), settings);
+    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, skin);
     for (const vehicle::WheelSettings& w : simulation.world().car(id).wheelSettings())
       car.hub_rest_m.push_back(w.centre_m.cast<float>());
     if (!car.hub_rest_m.empty()) {
