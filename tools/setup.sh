@@ -24,6 +24,7 @@ packages=(
   munge slurmctld slurmd slurm-client # a one-node Slurm for the cluster test (tools/sweep/local-slurm.sh)
   clang             # the sanitizer build and libFuzzer (make test-asan, make fuzz)
   libclang-rt-14-dev # clang's sanitizer and libFuzzer runtimes
+  libomp-14-dev     # OpenMP for clang's build (GCC brings libgomp): cars stepped in parallel (vehicle/)
   llvm              # llvm-symbolizer: sanitizer reports with file and line
   pybind11-dev      # the Python module deform_sandbox (python/)
   python3-dev       # its headers, for Debian's /usr/bin/python3

@@ -84,6 +84,7 @@ void registerBenchCommands(CLI::App& app) {
   registerBenchStepCommand(*bench);
   registerBenchMemoryCommand(*bench);
   registerBenchGridCommand(*bench);
+  registerBenchCarsCommand(*bench);
 }
 
 }  // namespace sandbox

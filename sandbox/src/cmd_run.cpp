@@ -141,6 +141,11 @@ RunResult runScene(const RunOptions& options) {
   const auto started = Clock::now();
   scenes::SceneConfig scene = scenes::loadScene(options.scene, overridesOf(options.sets));
   applyFlags(options, scene.outputs);
+  if (options.threads) {
+    if (*options.threads < 1)
+      throw deform::InputError("--threads: must be >= 1 (got " + std::to_string(*options.threads) + ")");
+    scene.threads = options.threads;
+  }
   const scenes::OutputConfig outputs = scene.outputs;
   const bool draw = outputs.frames || outputs.video;
   // The meshes load (and may be refused) before the output folder is touched: a refused run leaves an
@@ -164,19 +169,26 @@ RunResult runScene(const RunOptions& options) {
   const fs::path out = prepareOutput(options.out.empty() ? "out/" + scene.name : options.out, outputs.frames);
 
   scenes::StageTimes& times = run.times();
+  // Set-up is everything before the first step: the scene file, the meshes and builds (SceneRun's own
+  // share is in times already), the output folder; the renderer's and video's set-up count as render.
+  times.setup_ms = secondsSince(started) * 1e3;
   std::unique_ptr<RunRenderer> renderer;
   std::unique_ptr<render::VideoWriter> video;
+  const auto render_setup = Clock::now();
   if (draw) renderer = std::make_unique<RunRenderer>(run, outputs, times);
   if (outputs.video) {
     video = std::make_unique<render::VideoWriter>(
         (out / "video.mp4").string(), render::VideoSettings{outputs.width, outputs.height, outputs.fps});
   }
 
+  if (draw) times.render_ms += secondsSince(render_setup) * 1e3;
+
   // One frame (and timeline row) every playback_speed / fps simulated seconds, from t = 0 to the end.
   const double frame_dt_s = outputs.playback_speed / outputs.fps;
   const int frame_count = static_cast<int>(std::floor(scene.duration_s / frame_dt_s + 1e-9)) + 1;
   std::vector<std::string> columns = run.timelineColumns();
-  for (const char* c : {"physics_ms", "deform_ms", "embed_ms", "render_ms"}) columns.push_back(c);
+  for (const char* c : {"physics_ms", "deform_ms", "coupling_ms", "metrics_ms", "embed_ms", "render_ms"})
+    columns.push_back(c);
   std::vector<std::vector<double>> rows;
   ProgressBar progress(scene.name, options.progress);
   RunResult result;
@@ -197,11 +209,14 @@ RunResult runScene(const RunOptions& options) {
       times.render_ms += secondsSince(write_start) * 1e3;
       ++result.frames;
     }
+    const auto row_start = Clock::now();
     std::vector<double> row = run.timelineValues();
-    row.insert(row.end(), {times.physics_ms - before.physics_ms, times.deform_ms - before.deform_ms,
+    row.insert(row.end(), {times.physics_ms() - before.physics_ms(), times.deform_ms - before.deform_ms,
+                           times.coupling_ms - before.coupling_ms, times.metrics_ms - before.metrics_ms,
                            times.embed_ms - before.embed_ms, times.render_ms - before.render_ms});
     before = times;
     rows.push_back(std::move(row));
+    times.output_ms += secondsSince(row_start) * 1e3;
     char detail[96];
     std::snprintf(detail, sizeof detail, "t %.2f/%.2f s, frame %d/%d", run.time_s(), scene.duration_s,
                   frame + 1, frame_count);
@@ -215,10 +230,17 @@ RunResult runScene(const RunOptions& options) {
     times.render_ms += secondsSince(finish_start) * 1e3;
     result.video_path = video->path();
   }
+  // The files are written last; their time is measured up to the summary's own writing (which cannot
+  // hold its own duration).
+  const auto output_start = Clock::now();
+  const std::string timeline = scenes::timelineCsv(columns, rows);
+  scenes::writeFileAtomically((out / "timeline.csv").string(), timeline);
+  times.output_ms += secondsSince(output_start) * 1e3;
   times.total_ms = secondsSince(started) * 1e3;
 
   result.summary = run.summary();
   result.summary["frames"] = result.frames;
+  if (renderer) result.summary["embeds_out_of_view"] = renderer->embedsOutOfView();
   result.summary["fps"] = outputs.fps;
   result.summary["playback_speed"] = outputs.playback_speed;
   if (!result.video_path.empty()) result.summary["video"] = result.video_path;
@@ -226,7 +248,6 @@ RunResult runScene(const RunOptions& options) {
     result.summary["resumed_from"] = {{"file", options.resume}, {"time_s", resumed_s}};
   if (save) result.summary["saved_state"] = {{"file", options.save_state[1]}, {"time_s", saved_s}};
   result.out_dir = out.string();
-  scenes::writeFileAtomically((out / "timeline.csv").string(), scenes::timelineCsv(columns, rows));
   scenes::writeFileAtomically((out / "summary.json").string(), result.summary.dump(2) + "\n");
   if (run.diverged()) {
     throw std::runtime_error(scene.name + ": the run diverged (a non-finite value or one beyond 1e10): " +
@@ -257,6 +278,9 @@ void registerRunCommand(CLI::App& app) {
                   "--save-state T FILE")
       ->expected(2)
       ->type_name("T FILE");
+  run->add_option("--threads", options->threads,
+                  "Threads for the cars' deformation steps (default: the scene's key threads, else the "
+                  "machine's cores); the state hash does not depend on it");
   run->add_option("--resume", options->resume,
                   "Continue from a state file of this scene and these --set values (--save-state's)")
       ->type_name("FILE");
@@ -272,10 +296,14 @@ void registerRunCommand(CLI::App& app) {
         s["impact_speed_mps"].get<double>() * 3.6, s["residual_crush_m"].get<double>(),
         s["max_residual_crush_m"].get<double>(), s["max_dynamic_crush_m"].get<double>(),
         s["restitution"].get<double>());
-    std::printf("timing: physics %.0f ms, deform %.0f ms, embed %.0f ms, render %.0f ms, total %.0f ms\n",
-                s["timing_ms"]["physics"].get<double>(), s["timing_ms"]["deform"].get<double>(),
-                s["timing_ms"]["embed"].get<double>(), s["timing_ms"]["render"].get<double>(),
-                s["timing_ms"]["total"].get<double>());
+    const nlohmann::json& ms = s["timing_ms"];
+    std::printf(
+        "timing: setup %.0f ms, physics %.0f ms (tyres %.0f, collide %.0f, solve %.0f), deform %.0f ms, "
+        "coupling %.0f ms, metrics %.0f ms, embed %.0f ms, render %.0f ms, output %.0f ms, total %.0f ms\n",
+        ms["setup"].get<double>(), ms["physics"].get<double>(), ms["tyres"].get<double>(),
+        ms["collide"].get<double>(), ms["solve"].get<double>(), ms["deform"].get<double>(),
+        ms["coupling"].get<double>(), ms["metrics"].get<double>(), ms["embed"].get<double>(),
+        ms["render"].get<double>(), ms["output"].get<double>(), ms["total"].get<double>());
     if (s.contains("resumed_from"))
       std::printf("resumed from %s at t = %.4f s\n", options->resume.c_str(),
                   s["resumed_from"]["time_s"].get<double>());

@@ -23,6 +23,8 @@ void registerBenchStepCommand(CLI::App& bench);
 void registerBenchMemoryCommand(CLI::App& bench);
 /// `sandbox bench grid` (vertices against control points), in cmd_bench_grid.cpp.
 void registerBenchGridCommand(CLI::App& bench);
+/// `sandbox bench cars` (many cars, 1 and 2 threads), in cmd_bench_cars.cpp.
+void registerBenchCarsCommand(CLI::App& bench);
 /// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.
 void registerMeshRenderCommand(CLI::App& mesh);
 /// `sandbox run` (play a scene: summary, timeline, frames, video), in cmd_run.cpp.

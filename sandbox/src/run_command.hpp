@@ -22,6 +22,9 @@ struct RunOptions {
   /// --save-state T FILE: the two values as given (T in simulated seconds); empty when not asked.
   std::vector<std::string> save_state;
   std::string resume;  ///< --resume FILE: continue from this state file; empty: from the start
+  /// --threads N: threads for the cars' deformation (overrides the scene's key threads); none: the
+  /// scene's, else the machine's cores.
+  std::optional<int> threads;
 };
 
 struct RunResult {

@@ -7,6 +7,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <tuple>
 
 #include "render/heat_colours.hpp"
 #include "render/vehicle_meshes.hpp"
@@ -110,14 +113,24 @@ render::Environment sceneEnvironment(const scenes::SceneRun& run) {
 
 RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig& outputs,
                          scenes::StageTimes& times)
-    : heatmap_(outputs.heatmap) {
+    : heatmap_(outputs.heatmap),
+      aspect_(static_cast<float>(outputs.width) / static_cast<float>(std::max(outputs.height, 1))) {
   auto start = Clock::now();
   const vehicle::Simulation& simulation = run.simulation();
+  // Cars of one build (the same loaded model and shared control mesh) with the same skin settings share
+  // one set of weights (DESIGN.md section 8); the addresses stay put for the run.
+  using SkinKey = std::tuple<const void*, const void*, double, std::size_t, int>;
+  std::map<SkinKey, std::shared_ptr<const deform::Skin>> skins;
   for (std::size_t i = 0; i < run.carCount(); ++i) {
     CarMeshes car;
     const vehicle::CarId id = run.carId(i);
-    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, simulation.controlRestPoints(id),
-                                                 simulation.deformationSettings(id));
+    const vehicle::DeformationSettings& settings = simulation.deformationSettings(id);
+    const SkinKey key{&run.model(i).body, &simulation.controlRestPoints(id), settings.alpha,
+                      settings.k_nearest, static_cast<int>(settings.skin_method)};
+    std::shared_ptr<const deform::Skin>& skin = skins[key];
+    if (!skin)
+      skin = scenes::CarSkin::buildSkin(run.model(i).body, simulation.controlRestPoints(id), settings);
+    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, skin);
     for (const vehicle::WheelSettings& w : simulation.world().car(id).wheelSettings())
       car.hub_rest_m.push_back(w.centre_m.cast<float>());
     if (!car.hub_rest_m.empty()) {
@@ -164,12 +177,24 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   const vehicle::Simulation& simulation = run.simulation();
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
+  const render::Camera camera = sceneCamera(run);
   std::vector<bool> changed(cars_.size(), false);
   std::vector<std::vector<Eigen::Vector3d>> displacements_of(cars_.size());
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     displacements_of[i] = simulation.controlDisplacements(run.carId(i));
     const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
     scenes::CarSkin& skin = *cars_[i].skin;
+    // A car out of the camera's view is not embedded this frame (DESIGN.md section 8): its skin catches
+    // up, exactly, on the frame it comes into view (it recomputes what moved since its last update).
+    const deform::Aabb rest = skin.restBounds();
+    const vehicle::Pose pose = world.car(run.carId(i)).vehiclePose();
+    const Eigen::Vector3d centre_m = pose.toWorld(0.5 * (rest.min_m + rest.max_m));
+    // Grown by a diagonal for its shadow, which may fall into view from outside it.
+    const double radius_m = 1.5 * rest.diagonal_m() + skin.displacementBound_m(displacements);
+    if (!render::sphereInView(camera, aspect_, centre_m.cast<float>(), static_cast<float>(radius_m))) {
+      ++embeds_out_of_view_;
+      continue;
+    }
     obstacles_near_.gather(simulation, run.carId(i), skin.restBounds(),
                            skin.displacementBound_m(displacements));
     changed[i] = skin.update(displacements, obstacles_near_.shapes()) > 0;
@@ -203,7 +228,7 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   }
   for (const ObstacleMesh& o : obstacles_)
     renderer_->setTransform(o.mesh, matrixOf(world.obstaclePose(o.id)));
-  render::Image image = renderer_->renderImage(sceneCamera(run), environment_);
+  render::Image image = renderer_->renderImage(camera, environment_);
   times.render_ms += msSince(start);
   return image;
 }

@@ -31,6 +31,9 @@ class RunRenderer {
   /// Embeds the render meshes for the control points now (embed time) and draws the frame (render time).
   render::Image frame(const scenes::SceneRun& run, scenes::StageTimes& times);
 
+  /// Cars x frames whose embedding was skipped because the car was out of the camera's view.
+  std::size_t embedsOutOfView() const { return embeds_out_of_view_; }
+
   /// The car's skinned body (vehicle frame) as of the last frame.
   const scenes::CarSkin& skin(std::size_t car) const { return *cars_[car].skin; }
 
@@ -55,6 +58,8 @@ class RunRenderer {
   render::Environment environment_;
   bool heatmap_ = false;
   scenes::SkinObstacles obstacles_near_;  ///< scratch: what a car's render mesh is kept out of
+  float aspect_ = 16.0f / 9.0f;           ///< picture width / height
+  std::size_t embeds_out_of_view_ = 0;
 };
 
 /// How far the bodywork around each of `points_m` (vehicle frame, embedded in the control points by

@@ -10,14 +10,23 @@
 
 namespace scenes {
 
+std::shared_ptr<const deform::Skin> CarSkin::buildSkin(const deform::Mesh& body,
+                                                       const std::vector<Eigen::Vector3d>& control_rest_m,
+                                                       const vehicle::DeformationSettings& settings) {
+  return std::make_shared<const deform::Skin>(deform::Skin::build(
+      body.positions_m, control_rest_m, {settings.alpha, settings.k_nearest, 0, settings.skin_method}));
+}
+
 CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
                  const vehicle::DeformationSettings& settings)
-    : skin_(deform::Skin::build(body.positions_m, control_rest_m,
-                                {settings.alpha, settings.k_nearest, 0, settings.skin_method})),
+    : CarSkin(body, buildSkin(body, control_rest_m, settings)) {}
+
+CarSkin::CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin)
+    : skin_(std::move(skin)),
       rest_m_(body.positions_m),
       mesh_(body),
-      last_displacements_m_(control_rest_m.size(), Eigen::Vector3d::Zero()),
-      moved_(control_rest_m.size(), 0),
+      last_displacements_m_(skin_->controlPointCount(), Eigen::Vector3d::Zero()),
+      moved_(skin_->controlPointCount(), 0),
       normals_(body),
       grid_(body.positions_m),
       is_projected_(body.positions_m.size(), 0) {
@@ -28,9 +37,9 @@ CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& c
   interior_m_ = 0.5 * (grid_.bounds().min_m + grid_.bounds().max_m);
   // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
   // negative weights.
-  for (std::size_t j = 0; j < skin_.vertexCount(); ++j) {
+  for (std::size_t j = 0; j < skin_->vertexCount(); ++j) {
     double gain = 0;
-    for (std::size_t k = 0; k < skin_.influences(); ++k) gain += std::abs(skin_.slotWeight(j, k));
+    for (std::size_t k = 0; k < skin_->influences(); ++k) gain += std::abs(skin_->slotWeight(j, k));
     displacement_gain_ = std::max(displacement_gain_, gain);
   }
 }
@@ -63,8 +72,8 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   if (!any && obstacles.empty() && projected_.empty()) return 0;
   std::size_t changed = 0;
   if (any) {
-    changed = skin_.deformMoved(rest_m_.data(), displacements_m.data(), moved_, mesh_.positions_m.data(), 0,
-                                &vertex_recomputed_);
+    changed = skin_->deformMoved(rest_m_.data(), displacements_m.data(), moved_, mesh_.positions_m.data(), 0,
+                                 &vertex_recomputed_);
     last_displacements_m_ = displacements_m;
   } else {
     vertex_recomputed_.assign(mesh_.positions_m.size(), 0);

@@ -149,6 +149,7 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
     s.yield_limited = object->boolean("yield_limited", s.yield_limited);
     s.anchored_columns = object->boolean("anchored_columns", s.anchored_columns);
+    s.skip_when_idle = object->boolean("skip_when_idle", s.skip_when_idle);
     object->finish();
   }
   d.settings.coupling = coupling;
@@ -488,7 +489,7 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
   scene.source = source;
   nlohmann::json physics = document;
   if (physics.is_object())
-    for (const char* key : {"camera", "outputs", "description", "$schema"}) physics.erase(key);
+    for (const char* key : {"camera", "outputs", "description", "$schema", "threads"}) physics.erase(key);
   const std::string resolved = physics.dump();
   scene.settings_hash = vehicle::fnv1a(resolved.data(), resolved.size());
   scene.name = top.string("name", fs::path(source).stem().string());
@@ -496,6 +497,7 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
   top.string("$schema", "");  // editors' schema hint, ignored
   scene.duration_s = top.number("duration_s", std::nullopt, 1e-3, 1e5);
   scene.physics_hz = top.number("physics_hz", std::nullopt, 15, 20000);
+  if (top.has("threads")) scene.threads = static_cast<int>(top.integer("threads", std::nullopt, 1, 1024));
   scene.gravity_mps2 = top.number("gravity_mps2", 9.81, 0, 100);
   scene.ground = top.boolean("ground", true);
   scene.ground_friction = top.number("ground_friction", 1.0, 0, 10);

@@ -11,9 +11,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace scenes {
 namespace {
@@ -73,6 +75,10 @@ vehicle::ObstacleId addObstacle(vehicle::World& world, const ObstacleConfig& o, 
 
 }  // namespace
 
+int defaultThreads() {
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 std::string hashHex(uint64_t hash) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
@@ -108,6 +114,7 @@ std::string timelineCsv(const std::vector<std::string>& columns,
 }
 
 SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
+  const auto started = std::chrono::steady_clock::now();
   vehicle::WorldSettings world_settings;
   physics_substeps_ = static_cast<int>(std::ceil(kMinInternalRate_hz / scene_.physics_hz - 1e-9));
   physics_substeps_ = std::max(physics_substeps_, 1);
@@ -118,13 +125,25 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
   simulation_ =
       withSource(scene_.source, [&] { return std::make_unique<vehicle::Simulation>(world_settings); });
   total_steps_ = static_cast<uint64_t>(std::llround(scene_.duration_s * scene_.physics_hz));
+  simulation_->setThreads(scene_.threads.value_or(defaultThreads()));
 
+  std::map<std::string, std::shared_ptr<const deform::VehicleModel>> models;
   for (std::size_t i = 0; i < scene_.vehicles.size(); ++i) {
     const VehicleConfig& v = scene_.vehicles[i];
     const std::string where = scene_.source + ": " + vehicleKey(scene_, i);
-    deform::VehicleModel model = withSource(where + ".mesh", [&] {
-      return deform::loadVehicleModel(v.mesh, importOptions(v.mesh_scale, v.mesh_up, v.mesh_forward));
-    });
+    // Cars with the same mesh spec share one loaded model (DESIGN.md section 8).
+    char scale[40];
+    std::snprintf(scale, sizeof scale, "%a", v.mesh_scale);  // exact
+    const std::string mesh_key =
+        v.mesh + "\n" + scale + "\n" + v.mesh_up.value_or("") + "\n" + v.mesh_forward.value_or("");
+    std::shared_ptr<const deform::VehicleModel>& shared = models[mesh_key];
+    if (!shared) {
+      shared = withSource(where + ".mesh", [&] {
+        return std::make_shared<const deform::VehicleModel>(
+            deform::loadVehicleModel(v.mesh, importOptions(v.mesh_scale, v.mesh_up, v.mesh_forward)));
+      });
+    }
+    const deform::VehicleModel& model = *shared;
     vehicle::VehicleSettings base;
     base.wheels = vehicle::wheelsFromModel(base, model);
     if (v.wheels_in_body && model.wheels.empty()) {
@@ -144,8 +163,7 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
     const vehicle::CarId id = withSource(where + ".deformation", [&] {
       return simulation_->addDeformableCar(model, settings, start, v.deformation.settings);
     });
-    cars_.push_back(
-        Car{id, std::move(model), DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6, std::nullopt});
+    cars_.push_back(Car{id, shared, DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6, std::nullopt});
   }
   for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
     const std::string where = scene_.source + ": obstacles[" + std::to_string(i) + "]";
@@ -153,6 +171,8 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
         withSource(where, [&] { return addObstacle(simulation_->world(), scene_.obstacles[i], where); }));
   }
   refuseStartingOverlaps();
+  times_.setup_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
 }
 
 void SceneRun::refuseStartingOverlaps() const {
@@ -201,6 +221,8 @@ void SceneRun::step() {
 void SceneRun::internalStep() {
   vehicle::World& world = simulation_->world();
   const double dt = world.fixedDt_s();
+  // The drive inputs count as tyres (they are what the wheels are told).
+  const auto inputs_start = std::chrono::steady_clock::now();
   for (Car& car : cars_) {
     vehicle::Car& chassis = world.car(car.id);
     chassis.setInput(car.override_input ? *car.override_input
@@ -213,10 +235,16 @@ void SceneRun::internalStep() {
                      chassis.mass_kg() * car.lateral_speed_mps / dt * left, body.position_m);
     }
   }
+  times_.tyres_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - inputs_start).count();
   simulation_->step();
   const vehicle::StepTimings timings = simulation_->lastTimings();
-  times_.physics_ms += timings.physics_ms;
+  times_.tyres_ms += timings.tyres_ms;
+  times_.collide_ms += timings.collide_ms;
+  times_.solve_ms += timings.solve_ms;
   times_.deform_ms += timings.deform_ms;
+  times_.coupling_ms += timings.coupling_ms;
+  times_.metrics_ms += timings.metrics_ms;
 }
 
 void SceneRun::overrideDriverInput(std::size_t car, std::optional<vehicle::DriverInput> input) {
@@ -322,16 +350,26 @@ nlohmann::json SceneRun::summary() const {
   }
   out["diverged"] = any_diverged;
   out["cars"] = cars;
+  // Per car: body steps that ran the solver and those skipped asleep. Like timing_ms, not state: a
+  // resumed run counts only its own steps.
+  nlohmann::json deform_steps = nlohmann::json::array();
+  for (const Car& car : cars_) {
+    const vehicle::Simulation::DeformCounts counts = simulation_->deformCounts(car.id);
+    deform_steps.push_back({{"solved", counts.steps}, {"skipped", counts.skipped}});
+  }
+  out["deform_steps"] = deform_steps;
   out["state_hash"] = hashHex(stateHash());
   out["steps"] = steps();
   out["time_s"] = time_s();
   out["physics_hz"] = scene_.physics_hz;
   out["physics_substeps"] = physics_substeps_;
-  out["timing_ms"] = {{"physics", times_.physics_ms},
-                      {"deform", times_.deform_ms},
-                      {"embed", times_.embed_ms},
-                      {"render", times_.render_ms},
-                      {"total", times_.total_ms}};
+  out["threads"] = simulation_->threads();
+  // Every stage, and physics (tyres + collide + solve) as a subtotal for older readers.
+  out["timing_ms"] = {
+      {"setup", times_.setup_ms},     {"tyres", times_.tyres_ms},       {"collide", times_.collide_ms},
+      {"solve", times_.solve_ms},     {"deform", times_.deform_ms},     {"coupling", times_.coupling_ms},
+      {"metrics", times_.metrics_ms}, {"embed", times_.embed_ms},       {"render", times_.render_ms},
+      {"output", times_.output_ms},   {"physics", times_.physics_ms()}, {"total", times_.total_ms}};
   return out;
 }
 

@@ -66,3 +66,25 @@ TEST_CASE("normals the body came with are kept until something moves, then all r
   deform::computeVertexNormals(full);
   CHECK(skin.mesh().normals == full.normals);
 }
+
+TEST_CASE("cars of one build share one skin and deform as with their own", "[car_skin]") {
+  const deform::VehicleModel car = deform::makeSedan(4000);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
+  const std::vector<Eigen::Vector3d> control = deform::buildControlMesh(points, 60).points_m;
+  const vehicle::DeformationSettings settings;
+  const std::shared_ptr<const deform::Skin> shared = scenes::CarSkin::buildSkin(car.body, control, settings);
+  scenes::CarSkin a(car.body, shared), b(car.body, shared);
+  scenes::CarSkin own(car.body, control, settings);
+  CHECK(&a.skin() == &b.skin());
+  CHECK(&a.skin() != &own.skin());
+  // Each car's mesh is its own: a dent in one leaves the other at rest.
+  std::vector<Eigen::Vector3d> dent(control.size(), Eigen::Vector3d::Zero());
+  dent[0] = {-0.1, 0.02, 0.0};
+  dent[7] = {0.0, -0.05, 0.01};
+  a.update(dent);
+  own.update(dent);
+  CHECK(a.mesh().positions_m == own.mesh().positions_m);
+  CHECK(a.mesh().normals == own.mesh().normals);
+  CHECK(b.mesh().positions_m == car.body.positions_m);
+}

@@ -116,8 +116,8 @@ CrashMetrics Simulation::metrics(CarId car) const {
   std::size_t lead = 0;
   for (std::size_t i = 1; i < rest.size(); ++i)
     if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;
-  const std::vector<double> crush =
-      crushProfile(dc.mesh, dc.body->state().positions_m, dc.impact_direction_vehicle, rest[lead].z());
+  const std::vector<double> crush = crushProfile(dc.build->control_mesh, dc.body->state().positions_m,
+                                                 dc.impact_direction_vehicle, rest[lead].z());
   for (std::size_t i = 0; i < rest.size(); ++i)
     out.max_dent_m =
         std::max(out.max_dent_m,

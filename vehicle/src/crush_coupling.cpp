@@ -68,9 +68,10 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
   for (CarId c = 0; c < world.carCount(); ++c) consider({EntityRef::Kind::Car, c});
 }
 
-void Simulation::Impl::stepCar(DeformableCar& dc) {
-  Car& car = world.car(dc.id);
-  const Pose frame = car.vehiclePose();
+void Simulation::Impl::prepareCar(DeformableCar& dc) const {
+  const Car& car = world.car(dc.id);
+  dc.frame = car.vehiclePose();
+  const Pose& frame = dc.frame;
   const Eigen::Quaterniond to_vehicle = frame.orientation.conjugate();
   const double dt = world.fixedDt_s();
   const std::vector<CarContact> contacts = world.carContacts(dc.id);
@@ -83,7 +84,7 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
     if (crushable(world, c.other) &&
         std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
       dc.touching.push_back(c.other);
-  const std::size_t in_ode_contact = dc.touching.size();
+  dc.in_ode_contact = dc.touching.size();
   addApproaching(dc);
 
   // The obstacles where they are at the end of the step (vehicle frame), with their motion relative to
@@ -92,7 +93,8 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   // pitches turns the other way.
   const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
   const EntityRef self{EntityRef::Kind::Car, dc.id};
-  deform::StepInputs inputs;
+  dc.inputs = {};
+  deform::StepInputs& inputs = dc.inputs;
   inputs.contact_friction = dc.settings.contact_friction;
   dc.shapes.clear();
   for (const EntityRef& other : dc.touching) {
@@ -186,14 +188,26 @@ void Simulation::Impl::stepCar(DeformableCar& dc) {
   dc.plastic_before_step_J = state.plastic_work_J;
   dc.contact_loss_before_step_J = dc.contact_loss_J;
   if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.elastic_after_step_J;
-  const deform::StepReport report = dc.body->step(inputs, dt);
-  if (!report.asleep) dc.elastic_after_step_J = dc.body->carriedElasticEnergy_J();
+}
+
+void Simulation::Impl::solveCar(DeformableCar& dc) const {
+  dc.report = dc.body->step(dc.inputs, world.fixedDt_s());
+  if (!dc.report.asleep) dc.elastic_after_step_J = dc.body->carriedElasticEnergy_J();
+  ++(dc.report.asleep ? dc.deform_steps_skipped : dc.deform_steps);
+}
+
+void Simulation::Impl::finishCar(DeformableCar& dc) {
+  Car& car = world.car(dc.id);
+  const Pose& frame = dc.frame;
+  const double dt = world.fixedDt_s();
+  const bool crush = dc.settings.coupling == Coupling::Crush;
+  const deform::StepReport& report = dc.report;
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
   dc.inertial_work_J += report.inertial_work_J;
   dc.contact_loss_J += report.contact_loss_J;
-  dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(in_ode_contact));
-  for (std::size_t k = in_ode_contact; k < dc.touching.size(); ++k)
+  dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(dc.in_ode_contact));
+  for (std::size_t k = dc.in_ode_contact; k < dc.touching.size(); ++k)
     if (k < report.contact_impulse_per_obstacle_Ns.size() &&
         report.contact_impulse_per_obstacle_Ns[k].squaredNorm() > 0)
       dc.hit.push_back(dc.touching[k]);

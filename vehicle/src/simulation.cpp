@@ -1,24 +1,18 @@
-// A World with deformable cars and the crush coupling (simulation.hpp; DESIGN.md section 5): the API and
-// the step. One car's deformation is crush_coupling.cpp, its metrics crash_metrics_update.cpp.
+// A World with deformable cars and the crush coupling (simulation.hpp; DESIGN.md section 5): the API.
+// The step is simulation_step.cpp, one car's deformation crush_coupling.cpp, its metrics
+// crash_metrics_update.cpp, the shared builds car_build.cpp.
 #include "simulation_impl.hpp"
 
 #include <deform/error.hpp>
 #include <deform/masses.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace vehicle {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms(Clock::duration d) {
-  return std::chrono::duration<double, std::milli>(d).count();
-}
 
 std::string field(const char* member) {
   return std::string("vehicle.deformation.") + member;
@@ -112,27 +106,8 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   checkDeformationSettings(deformation);
   auto dc = std::make_unique<DeformableCar>();
   dc->settings = deformation;
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(model.body.positions_m.size());
-  for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
-  const std::string source = model.source.empty() ? "vehicle model" : model.source;
-  dc->mesh = deform::buildControlMesh(points, deformation.control_points, source.c_str());
-  // The shell's share of the car's mass, spread over the points by the tetrahedral fan (its shape only:
-  // the points hold shell_mass_fraction of the car); the chassis keeps the rest.
-  deform::MassSplit masses = deform::distributeMass(dc->mesh, car.mass_kg);
-  double points_kg = 0;
-  for (double m : masses.point_mass_kg) points_kg += m;
-  const double shell_kg = car.mass_kg * deformation.shell_mass_fraction;
-  for (double& m : masses.point_mass_kg) m *= shell_kg / points_kg;
-  masses.core_mass_kg = car.mass_kg - shell_kg;
-  deform::BodyDescription description;
-  description.material = deformation.material;
-  description.max_deviation_m = deformation.max_deviation_m;
-  description.anchored_columns = deformation.anchored_columns;
-  const deform::Aabb bounds_m = deform::boundingBox(model.body);
-  description.regions = placeMaterialMap(deformation.regions, deformation.material, bounds_m);
-  dc->body_settings =
-      std::make_shared<const deform::BodySettings>(deform::createBodySettings(dc->mesh, masses, description));
+  dc->build = impl_->builds.get(model, car, deformation);
+  dc->body_settings = dc->build->body_settings;
   deform::SolverParams params;
   params.substeps = static_cast<uint32_t>(deformation.substeps);
   params.iterations = static_cast<uint32_t>(deformation.iterations);
@@ -142,7 +117,9 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   params.inertial_scale = deformation.coupling == Coupling::Crush ? 1.0 : deformation.inertial_scale;
   dc->body = std::make_unique<deform::DeformableBody>(dc->body_settings, params);
 
-  const CarId id = impl_->world.addCar(model, car, start);
+  const CarId id = impl_->world.addCar(dc->build->collision_hull, wheelsFromModel(car, model), car, start);
+  const deform::Aabb& bounds_m = dc->build->bounds_m;
+  const deform::MassSplit& masses = dc->build->masses;
   dc->id = id;
   Car& c = impl_->world.car(id);
   if (deformation.coupling == Coupling::Crush) {
@@ -158,11 +135,11 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
     // the spokes (its weight and inertia included), so the ODE chassis carries the rest of the car.
     Eigen::Matrix3d shell_inertia = Eigen::Matrix3d::Zero();
     for (std::size_t i = 0; i < masses.point_mass_kg.size(); ++i) {
-      const Eigen::Vector3d r = dc->mesh.points_m[i] - c.centreOfMass_m();
+      const Eigen::Vector3d r = dc->build->control_mesh.points_m[i] - c.centreOfMass_m();
       shell_inertia +=
           masses.point_mass_kg[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
     }
-    c.carryShell(shell_kg, shell_inertia);
+    c.carryShell(dc->build->shell_mass_kg, shell_inertia);
     dc->chassis_share_of_rotation = c.inertia_kg_m2().inverse() * c.chassisInertia_kg_m2();
   }
   dc->previous_velocity_mps = c.velocity_mps();
@@ -171,58 +148,6 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   impl_->index_of[id] = static_cast<int>(impl_->cars.size());
   impl_->cars.push_back(std::move(dc));
   return id;
-}
-
-void Simulation::step() {
-  Impl& m = *impl_;
-  const auto t0 = Clock::now();
-  // The crush forces found last step act during this one (on the car, and their reaction on free bodies).
-  std::vector<Eigen::Vector3d> velocity_before, omega_before;
-  std::vector<double> kinetic_before;
-  m.car_velocity_before.clear();
-  for (CarId c = 0; c < m.world.carCount(); ++c)
-    m.car_velocity_before.push_back(m.world.car(c).velocity_mps());
-  for (auto& dc : m.cars) {
-    const Car& car = m.world.car(dc->id);
-    velocity_before.push_back(car.velocity_mps());
-    omega_before.push_back(car.angularVelocity_rad_s());
-    kinetic_before.push_back(m.carKineticEnergy(*dc));
-  }
-  m.world.step();
-  const auto t1 = Clock::now();
-  for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
-  const double dt = m.world.fixedDt_s();
-  for (std::size_t i = 0; i < m.cars.size(); ++i) {
-    DeformableCar& dc = *m.cars[i];
-    const Car& car = m.world.car(dc.id);
-    // Work of every force on the chassis over the step, at the midpoint velocities of the points they act
-    // at [J]: the crush force, and (for the energy balance) tyres and suspension, ODE contacts, drag and
-    // gravity.
-    const Eigen::Vector3d v_mid = 0.5 * (velocity_before[i] + car.velocity_mps());
-    const Eigen::Vector3d w_mid = 0.5 * (omega_before[i] + car.angularVelocity_rad_s());
-    const Eigen::Vector3d com = car.bodyPose().position_m;
-    auto pointVelocity = [&](const Eigen::Vector3d& p) {
-      return Eigen::Vector3d(v_mid + w_mid.cross(p - com));
-    };
-    double taken_J = 0;  // by everything else
-    for (const WheelState& w : car.wheels())
-      if (w.in_contact) taken_J -= w.force_N.dot(pointVelocity(w.contact_point_m)) * dt;
-    const EntityRef self{EntityRef::Kind::Car, dc.id};
-    for (const ContactPoint& c : m.world.contacts()) {
-      if (!(c.a == self) && !(c.b == self)) continue;
-      const Eigen::Vector3d force = c.a == self ? c.force_on_a_N : Eigen::Vector3d(-c.force_on_a_N);
-      taken_J -= force.dot(pointVelocity(c.position_m)) * dt;
-    }
-    const VehicleSettings& vs = car.settings();
-    const Eigen::Vector3d drag =
-        -0.5 * vs.air_density_kg_m3 * vs.drag_area_m2 * velocity_before[i].norm() * velocity_before[i];
-    taken_J -=
-        (drag + car.mass_kg() * m.world.settings().gravity_mps2).dot(v_mid) * dt;  // whole car's weight
-    dc.step_other_work_J = taken_J;
-    m.stepCar(dc);
-    m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
-  }
-  m.timings = {ms(t1 - t0), ms(Clock::now() - t1)};
 }
 
 int Simulation::run(double duration_s) {
@@ -257,7 +182,7 @@ const std::vector<Eigen::Vector3d>& Simulation::controlPoints(CarId car) const {
 }
 
 const deform::ControlMesh& Simulation::controlMesh(CarId car) const {
-  return impl_->of(car).mesh;
+  return impl_->of(car).build->control_mesh;
 }
 
 const DeformationSettings& Simulation::deformationSettings(CarId car) const {
@@ -266,6 +191,11 @@ const DeformationSettings& Simulation::deformationSettings(CarId car) const {
 
 const deform::DeformableBody& Simulation::body(CarId car) const {
   return *impl_->of(car).body;
+}
+
+Simulation::DeformCounts Simulation::deformCounts(CarId car) const {
+  const DeformableCar& dc = impl_->of(car);
+  return {dc.deform_steps, dc.deform_steps_skipped};
 }
 
 StepTimings Simulation::lastTimings() const {

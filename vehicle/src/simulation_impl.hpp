@@ -4,6 +4,8 @@
 // crash_metrics_update.cpp (what a run did to a car).
 #include <vehicle/simulation.hpp>
 
+#include <vehicle/car_build.hpp>
+
 #include "crush_shapes.hpp"
 
 #include <deform/body_settings.hpp>
@@ -30,17 +32,28 @@ bool enclosesWithMargin(const deform::ControlMesh& mesh, const Eigen::Vector3d& 
 struct DeformableCar {
   CarId id = 0;
   DeformationSettings settings;
-  deform::ControlMesh mesh;
-  std::shared_ptr<const deform::BodySettings> body_settings;
+  /// The shared, immutable part (control mesh, masses, body settings, collision hull).
+  std::shared_ptr<const CarBuild> build;
+  std::shared_ptr<const deform::BodySettings> body_settings;  ///< build->body_settings
   std::unique_ptr<deform::DeformableBody> body;
   CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
   std::vector<EntityRef> touching;  ///< crushable entities in contact or within reach this step
   /// Of those, what the car met this step: in ODE's contacts, or pushing the body's points (the metrics'
   /// impact and rebound window; one within reach but missed is not an impact).
   std::vector<EntityRef> hit;
+  std::size_t in_ode_contact = 0;  ///< the first entries of touching, found in ODE's contacts
   /// Its control points in the world before this step's deformation: what other cars dent against
   /// (taken for every car first, so the order cars are stepped in does not matter).
   ObstacleShape world_shape;
+
+  // This step's work (prepareCar, solveCar, finishCar).
+  Pose frame;                 ///< the vehicle frame after ODE's step, before the body's reaction
+  deform::StepInputs inputs;  ///< what the body steps with
+  deform::StepReport report;  ///< what its step handed back
+
+  /// Steps whose body step ran the XPBD solver, and steps it skipped (asleep: no contact, no motion,
+  /// the same load; O(1), the shell carried rigidly). Statistics, not state.
+  uint64_t deform_steps = 0, deform_steps_skipped = 0;
 
   // Coupling.
   bool hull_dirty = false;                         ///< dented since the collision hull was last rebuilt
@@ -86,6 +99,17 @@ struct Simulation::Impl {
   std::vector<std::unique_ptr<DeformableCar>> cars;
   std::vector<int> index_of;  ///< per CarId: index into cars, -1 when rigid
   StepTimings timings;
+  CarBuildCache builds;  ///< one build per mesh and shaping settings, shared by the cars
+  int threads = 1;       ///< for the cars' deformation steps (Simulation::setThreads)
+
+  /// Per car (index into cars): whether it touches another car or a free obstacle this step, so that its
+  /// step reads or writes what another car's does (it then runs in the cars' order, on one thread).
+  std::vector<uint8_t> coupledCars() const;
+  /// Per car (index into cars): nothing near it this step (simulation_step.cpp's broad phase: boxes of
+  /// the control points and obstacles grown by the step's travel; any contact but the ground's counts).
+  std::vector<uint8_t> idleCars() const;
+  /// Keeps an idle car's body asleep (DeformationSettings::skip_when_idle), or lets it wake as usual.
+  void holdAsleep(DeformableCar& dc, bool idle) const;
 
   explicit Impl(const WorldSettings& s) : world(s) {}
 
@@ -145,7 +169,15 @@ struct Simulation::Impl {
   /// (the chassis's motion at each point plus the point's own relative velocity).
   double carKineticEnergy(const DeformableCar& dc) const;
 
-  void stepCar(DeformableCar& dc);
+  /// One car's step in three parts (crush_coupling.cpp): what it touches becomes the body's inputs
+  /// (reads the world only), the body steps (touches nothing but the car), the reaction goes to ODE and
+  /// the collision hull follows the dent (writes the world).
+  void prepareCar(DeformableCar& dc) const;
+  /// Work every force but the body's took from the chassis over ODE's step (the energy account) [J].
+  double otherWork_J(const DeformableCar& dc, const Eigen::Vector3d& velocity_before,
+                     const Eigen::Vector3d& omega_before) const;
+  void solveCar(DeformableCar& dc) const;
+  void finishCar(DeformableCar& dc);
   /// Adds to dc.touching what its control points can reach within this step (crush_coupling.cpp).
   void addApproaching(DeformableCar& dc) const;
   static constexpr double kApproachMargin_m = 0.01;

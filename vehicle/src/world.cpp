@@ -7,6 +7,7 @@
 #include <deform/error.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -114,6 +115,7 @@ struct World::Impl {
   unsigned long random_seed = 0;  ///< ODE's quick-step shuffle seed, owned by this world
   double time_s = 0, accumulator_s = 0;
   uint64_t steps = 0;
+  WorldTimings timings;  ///< of the last step
 
   /// Free obstacles sleep after kSleepDelay_s resting on something (they have contact joints) below
   /// kSleepSpeed_mps and kSleepSpin_rad_s (DESIGN.md section 8: no work for what does not move; a
@@ -348,6 +350,11 @@ CarId World::addCar(const deform::VehicleModel& model, const VehicleSettings& se
   const deform::ControlMesh hull =
       deform::buildControlMesh(points, settings.collision_points, source.c_str());
   return impl_->addCar(hull, settings, wheelsFromModel(settings, model), start);
+}
+
+CarId World::addCar(const deform::ControlMesh& hull, std::vector<WheelSettings> wheels,
+                    const VehicleSettings& settings, const CarStart& start) {
+  return impl_->addCar(hull, settings, std::move(wheels), start);
 }
 
 CarId World::addCar(const deform::ControlMesh& hull, const VehicleSettings& settings, const CarStart& start) {
@@ -591,11 +598,15 @@ void World::shiftCar(CarId id, const Eigen::Vector3d& shift_m) {
 void World::step() {
   Impl& m = *impl_;
   const double dt = fixedDt_s();
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   for (auto& c : m.cars) c->applyForces(dt);
+  const auto t1 = Clock::now();
   m.contacts.clear();
   m.feedback.clear();
   m.feedback_sign.clear();
   dSpaceCollide(m.space, &m, &Impl::nearCallback);
+  const auto t2 = Clock::now();
   // ODE's quick step shuffles constraints with one global random seed: give it this world's own.
   dRandSetSeed(m.random_seed);
   dWorldQuickStep(m.world, dt);
@@ -611,6 +622,12 @@ void World::step() {
   dJointGroupEmpty(m.contact_joints);
   m.time_s += dt;
   ++m.steps;
+  auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  m.timings = {ms(t1 - t0), ms(t2 - t1), ms(Clock::now() - t2)};
+}
+
+WorldTimings World::lastTimings() const {
+  return impl_->timings;
 }
 
 int World::advance(double dt_s) {

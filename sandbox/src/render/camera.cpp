@@ -52,6 +52,21 @@ Eigen::Matrix4f Camera::projection(float aspect) const {
   return m;
 }
 
+bool sphereInView(const Camera& camera, float aspect, const Eigen::Vector3f& centre_m, float radius_m) {
+  // The frustum's planes from the rows of the clip matrix (Gribb and Hartmann, 2001): a point is inside
+  // where w +- x, w +- y and w +- z are all >= 0.
+  const Eigen::Matrix4f clip = camera.projection(aspect) * camera.view();
+  const Eigen::Vector4f p = centre_m.homogeneous();
+  for (int axis = 0; axis < 3; ++axis)
+    for (float sign : {1.0f, -1.0f}) {
+      const Eigen::Vector4f plane = clip.row(3) + sign * clip.row(axis);
+      const float length = plane.head<3>().norm();
+      if (!(length > 0)) continue;
+      if (plane.dot(p) / length < -radius_m) return false;
+    }
+  return true;
+}
+
 Eigen::Vector3f projectToPixel(const Camera& camera, const Eigen::Vector3f& point_m, int width, int height) {
   const Eigen::Vector4f eye = camera.view() * point_m.homogeneous();
   const Eigen::Vector4f clip =

@@ -27,6 +27,10 @@ struct Camera {
 /// width x height picture, and its depth in front of the camera [m] (negative: behind the camera).
 Eigen::Vector3f projectToPixel(const Camera& camera, const Eigen::Vector3f& point_m, int width, int height);
 
+/// Whether any of the sphere at `centre_m` with `radius_m` may be in the picture (width / height
+/// `aspect`): false only when it lies wholly outside one plane of the view frustum (near and far too).
+bool sphereInView(const Camera& camera, float aspect, const Eigen::Vector3f& centre_m, float radius_m);
+
 /// Camera looking along `view_direction` (from the eye towards the box) at the centre of `box`, moved
 /// back just far enough that all eight corners fit with `margin` (fraction of the picture kept free on
 /// each side). Near and far planes are set from the distance.

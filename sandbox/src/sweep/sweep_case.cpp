@@ -40,8 +40,8 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
           {"kinetic_initial_J", m.energy.kinetic_initial_J},
           {"diverged", m.diverged},
           {"state_hash", scenes::hashHex(run.stateHash())},
-          {"physics_ms", run.times().physics_ms},
-          {"deform_ms", run.times().deform_ms}};
+          {"physics_ms", run.times().physics_ms()},
+          {"deform_ms", run.times().deformation_ms()}};
 }
 
 nlohmann::json measureCase(const SweepCase& sweep_case) {

@@ -188,8 +188,8 @@ nlohmann::json measureTradeoffCase(const std::string& scene_name, const std::vec
 
   const double n = static_cast<double>(std::max<long>(frames, 1));
   return {{"scene_name", scene.name},
-          {"physics_ms", run.times().physics_ms / n},
-          {"deform_ms", run.times().deform_ms / n},
+          {"physics_ms", run.times().physics_ms() / n},
+          {"deform_ms", run.times().deformation_ms() / n},
           {"embed_ms", embed_ms / n},
           {"residual_crush_m", simulation.metrics(car).residual_crush_m},
           {"strain_residual",

@@ -15,6 +15,7 @@
 #include <deform/vertex_normals.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -25,6 +26,14 @@ class CarSkin {
   /// Skin of `body` (vehicle frame) in `control_rest_m` with the car's alpha, k_nearest and skin_method.
   CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
           const vehicle::DeformationSettings& settings);
+  /// The same with weights built beforehand by buildSkin for this body (shared by the cars of one
+  /// build: same body mesh, control mesh and skin settings; DESIGN.md section 8).
+  CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin);
+  /// The weights the first constructor builds: `body`'s vertices in `control_rest_m` with the car's
+  /// alpha, k_nearest and skin_method.
+  static std::shared_ptr<const deform::Skin> buildSkin(const deform::Mesh& body,
+                                                       const std::vector<Eigen::Vector3d>& control_rest_m,
+                                                       const vehicle::DeformationSettings& settings);
 
   /// Moves the vertices for control-point displacements c_i - c_i0 [m]; recomputes only the vertices of
   /// points whose displacement changed since the last update, and the normals of the vertices sharing a
@@ -59,10 +68,10 @@ class CarSkin {
   /// The deformed mesh now (vehicle frame), normals up to date.
   const deform::Mesh& mesh() const { return mesh_; }
   const std::vector<Eigen::Vector3f>& restPositions() const { return rest_m_; }
-  const deform::Skin& skin() const { return skin_; }
+  const deform::Skin& skin() const { return *skin_; }
 
  private:
-  deform::Skin skin_;
+  std::shared_ptr<const deform::Skin> skin_;  ///< immutable, may be shared with other cars
   std::vector<Eigen::Vector3f> rest_m_;
   deform::Mesh mesh_;
   std::vector<Eigen::Vector3d> last_displacements_m_;

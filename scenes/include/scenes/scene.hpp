@@ -132,6 +132,9 @@ struct SceneConfig {
   double gravity_mps2 = 9.81;    ///< downwards [m/s^2]
   bool ground = true;            ///< a ground plane at z = 0
   double ground_friction = 1.0;  ///< [-]
+  /// Threads the cars' deformation steps run on (scene key threads, sandbox run --threads); none: the
+  /// machine's cores. The state does not depend on it.
+  std::optional<int> threads;
   std::vector<VehicleConfig> vehicles;
   std::vector<ObstacleConfig> obstacles;
   CameraConfig camera;

@@ -20,14 +20,30 @@
 
 namespace scenes {
 
-/// Accumulated time per stage of a run [ms]. physics and deform come from the simulation; embed (the
-/// render mesh following the control points) and render (drawing, PNG, video) from whoever draws.
+/// Accumulated wall time per stage of a run [ms] (summary.json's timing_ms). The simulation's stages
+/// come from vehicle::StepTimings; setup (meshes, builds, world), embed (the render mesh following the
+/// control points), render (drawing, PNG, video) and output (timeline rows, summary and files) from
+/// whoever does them. total is the whole run; the stages together cover all but a sliver of it.
 struct StageTimes {
-  double physics_ms = 0;
+  double setup_ms = 0;
+  double tyres_ms = 0;
+  double collide_ms = 0;
+  double solve_ms = 0;
   double deform_ms = 0;
+  double coupling_ms = 0;
+  double metrics_ms = 0;
   double embed_ms = 0;
   double render_ms = 0;
+  double output_ms = 0;
   double total_ms = 0;
+  /// ODE's whole step: tyres, collide and solve [ms].
+  double physics_ms() const { return tyres_ms + collide_ms + solve_ms; }
+  /// The deformable bodies' share: deform, coupling and metrics [ms].
+  double deformation_ms() const { return deform_ms + coupling_ms + metrics_ms; }
+  /// Every named stage [ms] (what the coverage of total_ms is measured by).
+  double stages_ms() const {
+    return setup_ms + physics_ms() + deformation_ms() + embed_ms + render_ms + output_ms;
+  }
 };
 
 /// The crush coupling's force acts one step late; at internal steps longer than 1 / this rate it
@@ -51,7 +67,7 @@ class SceneRun {
   std::size_t carCount() const { return cars_.size(); }
   vehicle::CarId carId(std::size_t car) const { return cars_[car].id; }
   /// The car's model as loaded (render mesh and wheels, vehicle frame).
-  const deform::VehicleModel& model(std::size_t car) const { return cars_[car].model; }
+  const deform::VehicleModel& model(std::size_t car) const { return *cars_[car].model; }
   /// Obstacle id in the world of the scene's obstacle `index`.
   vehicle::ObstacleId obstacleId(std::size_t index) const { return obstacle_ids_[index]; }
 
@@ -122,7 +138,7 @@ class SceneRun {
  private:
   struct Car {
     vehicle::CarId id = 0;
-    deform::VehicleModel model;
+    std::shared_ptr<const deform::VehicleModel> model;  ///< shared by the cars of the same mesh spec
     DrivePlayer driver;
     double lateral_speed_mps = 0;                        ///< pushed in on the first step
     std::optional<vehicle::DriverInput> override_input;  ///< replaces the script while set
@@ -148,6 +164,9 @@ class SceneRun {
 /// so that a run can be resumed without naming its scene again. Throws deform::InputError naming `path`
 /// when it cannot be read or is not a state file (the full checks are restoreState's).
 std::string stateFileSceneSource(const std::string& path);
+
+/// Threads a run takes when neither the scene nor the command line says: the machine's cores.
+int defaultThreads();
 
 /// "0123456789abcdef": a state hash as 16 hex digits.
 std::string hashHex(uint64_t hash);

@@ -96,6 +96,13 @@ struct DeformationSettings {
   /// (deform::BodyDescription::anchored_columns); off: spokes along the patch's normal (the older model).
   /// With yield_limited, the wall crash converges in N (docs/CRASH_CALIBRATION.md).
   bool anchored_columns = true;
+  /// Idle cars cost nothing (DESIGN.md section 8): with nothing near the car (a broad phase over the
+  /// bounding boxes of every car's control points and every obstacle, grown by the step's travel) its
+  /// body, once deform has put it to sleep, stays asleep whatever the chassis's accelerations do: the
+  /// shell is carried rigidly and no solver step runs until something comes near. Off (the default, and
+  /// every shipped scene's physics): the body wakes on any change of its inertial load above
+  /// deform::SolverParams::wake_load_mps2, which a car on its suspension does nearly every step.
+  bool skip_when_idle = false;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
@@ -170,10 +177,16 @@ struct CrashMetrics {
   bool impacted = false;  ///< the car has hit something (not the ground)
 };
 
-/// Stage timings of the last step [ms], for the runner's timing_ms.
+/// Stage timings of the last step [ms], for the runner's timing_ms. Each is wall time: with threads,
+/// a parallel phase's time is split over its stages in proportion to their time summed over the cars.
 struct StepTimings {
-  double physics_ms = 0;  ///< ODE step (wheels, collisions, solver) [ms]
-  double deform_ms = 0;   ///< every car's deformation and coupling [ms]
+  double tyres_ms = 0;     ///< ODE side: wheel raycasts, suspension, tyre forces (WorldTimings) [ms]
+  double collide_ms = 0;   ///< ODE's collision detection [ms]
+  double solve_ms = 0;     ///< ODE's quick step [ms]
+  double deform_ms = 0;    ///< every car's body step (deform's XPBD substeps) [ms]
+  double coupling_ms = 0;  ///< what the cars touch into deform's inputs, the reaction back to ODE [ms]
+  double metrics_ms = 0;   ///< crash metrics and the energy account [ms]
+  double physics_ms() const { return tyres_ms + collide_ms + solve_ms; }  ///< ODE's whole step [ms]
 };
 
 class Simulation {
@@ -191,6 +204,14 @@ class Simulation {
   /// from `model`'s body mesh; the chassis as World::addCar. Throws deform::InputError for bad settings.
   CarId addDeformableCar(const deform::VehicleModel& model, const VehicleSettings& car, const CarStart& start,
                          const DeformationSettings& deformation = {});
+
+  /// Threads the cars' deformation steps run on (>= 1; 1: all on the calling thread). ODE's step stays
+  /// on the calling thread. The state is bit for bit the same on any count: a car that touches another
+  /// car or a free obstacle takes its whole step in the order of the cars, as on one thread; the others
+  /// read only their own state and static obstacles until their reaction, which is handed to ODE in that
+  /// order too. Throws deform::InputError naming "threads" for a count below 1.
+  void setThreads(int threads);
+  int threads() const;
 
   /// One fixed physics step: ODE, then every car's deformation (and crush coupling).
   void step();
@@ -213,6 +234,14 @@ class Simulation {
   const deform::DeformableBody& body(CarId car) const;
 
   CrashMetrics metrics(CarId car) const;
+  /// Steps in which car's body ran deform's solver, and steps it skipped at no solver cost (its body
+  /// asleep: nothing touching it, its points at rest, the chassis's load unchanged; the shell is carried
+  /// rigidly, which is exactly what the solver would do then). Counted since the simulation was built.
+  struct DeformCounts {
+    uint64_t steps = 0;
+    uint64_t skipped = 0;
+  };
+  DeformCounts deformCounts(CarId car) const;
   StepTimings lastTimings() const;
   /// Everything that decides the future, between steps: the world's (World::saveState) and per
   /// deformable car its body's state (deform::saveState), the crush coupling's memory (hull dirty, quiet

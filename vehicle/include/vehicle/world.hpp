@@ -94,6 +94,13 @@ struct CarStart {
   bool on_ground = true;
 };
 
+/// Where the last World::step's time went [ms].
+struct WorldTimings {
+  double tyres_ms = 0;    ///< every car's wheel raycasts, suspension and tyre forces [ms]
+  double collide_ms = 0;  ///< ODE's collision detection (the contacts) [ms]
+  double solve_ms = 0;    ///< ODE's quick step and its bookkeeping [ms]
+};
+
 class World {
  public:
   /// Throws deform::InputError naming the field for a rate or iteration count out of range.
@@ -112,6 +119,10 @@ class World {
   /// A car with the given collision hull (vehicle frame); wheels from settings or the hull's bounding box.
   CarId addCar(const deform::ControlMesh& hull, const VehicleSettings& settings = {},
                const CarStart& start = {});
+  /// A car with a collision hull built beforehand (vehicle frame, e.g. a shared CarBuild's) and its wheels
+  /// (e.g. wheelsFromModel's): addCar(model, ...) without building the hull again.
+  CarId addCar(const deform::ControlMesh& hull, std::vector<WheelSettings> wheels,
+               const VehicleSettings& settings, const CarStart& start = {});
   /// A car whose chassis is a box of settings.box_size_m (no mesh needed).
   CarId addBoxCar(const VehicleSettings& settings = {}, const CarStart& start = {});
 
@@ -187,6 +198,9 @@ class World {
   double fixedDt_s() const;
   double time_s() const;
   uint64_t stepCount() const;
+
+  /// Where the last step's time went.
+  WorldTimings lastTimings() const;
 
   /// Contacts between bodies (chassis, obstacles) found in the last step.
   const std::vector<ContactPoint>& contacts() const;

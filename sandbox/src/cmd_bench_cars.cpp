@@ -1,0 +1,35 @@
+// `sandbox bench cars` (cars_bench/cars_bench.hpp): many cars at 60 Hz on one and two threads.
+#include <deform/error.hpp>
+
+#include <memory>
+
+#include "cars_bench/cars_bench.hpp"
+#include "commands.hpp"
+
+namespace sandbox {
+
+void registerBenchCarsCommand(CLI::App& bench) {
+  auto options = std::make_shared<CarsBenchOptions>();
+  auto quick = std::make_shared<bool>(false);
+  auto* cmd = bench.add_subcommand(
+      "cars", "Many sedans cruising at 60 Hz: set-up, cost per simulated second by stage, 1 and 2 threads");
+  cmd->add_option("--out", options->out_dir, "Folder for cars.csv, cars.md and cars.png")
+      ->capture_default_str();
+  cmd->add_flag("--quick", *quick, "1, 10 and 50 cars for 1 simulated second (well under a minute)");
+  cmd->add_flag(
+      "--skip-when-idle", options->skip_when_idle,
+      "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle)");
+  cmd->add_option("--duration", options->duration_s, "Simulated seconds per run")->capture_default_str();
+  cmd->callback([options, quick] {
+    if (!(options->duration_s > 0 && options->duration_s <= 1e4))
+      throw deform::InputError("--duration: must be in (0, 10000] s");
+    CarsBenchOptions run = *options;
+    if (*quick) {
+      run.cars = {1, 10, 50};
+      run.duration_s = 1.0;
+    }
+    writeCarsBenchReport(run, runCarsBench(run));
+  });
+}
+
+}  // namespace sandbox
