@@ -48,4 +48,10 @@ std::string CsvTable::number(double value) {
   return text;
 }
 
+std::string CsvTable::fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 }  // namespace sandbox

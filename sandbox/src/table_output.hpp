@@ -14,6 +14,8 @@ class CsvTable {
   std::string text() const;
   /// A number with 6 significant digits.
   static std::string number(double value);
+  /// A number with `decimals` digits after the point (a Markdown table's cell).
+  static std::string fixed(double value, int decimals);
 
  private:
   std::vector<std::string> columns_;

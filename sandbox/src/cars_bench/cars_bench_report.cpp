@@ -13,12 +13,6 @@
 namespace sandbox {
 namespace {
 
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 // The stages of a row, in the order they run, with their names.
 std::vector<std::pair<const char*, double>> stages(const CarsBenchRow& r) {
   return {{"tyres", r.tyres_ms},   {"collide", r.collide_ms},   {"solve", r.solve_ms},
@@ -102,7 +96,8 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
 
   std::ostringstream md;
   md << "Built-in sedans (20k vertices, 60 control points) cruising at 50 km/h under speed control, "
-     << fixed(options.physics_hz, 0) << " Hz, " << fixed(options.duration_s, 1) << " s simulated, no obstacle"
+     << CsvTable::fixed(options.physics_hz, 0) << " Hz, " << CsvTable::fixed(options.duration_s, 1)
+     << " s simulated, no obstacle"
      << (options.skip_when_idle ? ", idle cars skipped (`skip_when_idle`)" : "")
      << ". Stages in wall ms per simulated second.\n\n"
      << "| cars | threads | set-up ms | tyres | collide | solve | deform | coupling | metrics | step | x "
@@ -110,9 +105,9 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
         "time | hash same on all thread counts |\n"
      << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   for (const CarsBenchRow& r : rows) {
-    md << "| " << r.cars << " | " << r.threads << " | " << fixed(r.setup_ms, 0);
-    for (const auto& [name, ms] : stages(r)) md << " | " << fixed(ms, 1);
-    md << " | " << fixed(r.step_ms, 0) << " | " << fixed(r.realtime_factor(), 1) << " | "
+    md << "| " << r.cars << " | " << r.threads << " | " << CsvTable::fixed(r.setup_ms, 0);
+    for (const auto& [name, ms] : stages(r)) md << " | " << CsvTable::fixed(ms, 1);
+    md << " | " << CsvTable::fixed(r.step_ms, 0) << " | " << CsvTable::fixed(r.realtime_factor(), 1) << " | "
        << (sameHash(rows, r.cars) ? "yes" : "**no**") << " |\n";
   }
   scenes::writeFileAtomically(dir + "/cars.md", md.str());

@@ -47,12 +47,6 @@ ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
   return row;
 }
 
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::string>& names,
                   const std::string& dir) {
   CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
@@ -72,12 +66,12 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                   CsvTable::number(r.max_dent_m), CsvTable::number(r.restitution),
                   CsvTable::number(r.plastic_work_J), CsvTable::number(r.kinetic_initial_J),
                   CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms)});
-      md << "| " << r.control_points << " | " << fixed(r.residual_crush_m, 3) << " | "
-         << fixed(r.max_residual_crush_m, 3) << " | " << fixed(r.max_dynamic_crush_m, 3) << " | "
-         << fixed(r.max_dent_m, 3) << " | " << fixed(r.restitution, 3) << " | "
-         << fixed(100 * r.plastic_work_J / std::max(r.kinetic_initial_J, 1e-9), 0) << " % | "
-         << (r.change_from_finest >= 0 ? "+" : "") << fixed(100 * r.change_from_finest, 1) << " % | "
-         << fixed(r.deform_ms, 0) << " |\n";
+      md << "| " << r.control_points << " | " << CsvTable::fixed(r.residual_crush_m, 3) << " | "
+         << CsvTable::fixed(r.max_residual_crush_m, 3) << " | " << CsvTable::fixed(r.max_dynamic_crush_m, 3)
+         << " | " << CsvTable::fixed(r.max_dent_m, 3) << " | " << CsvTable::fixed(r.restitution, 3) << " | "
+         << CsvTable::fixed(100 * r.plastic_work_J / std::max(r.kinetic_initial_J, 1e-9), 0) << " % | "
+         << (r.change_from_finest >= 0 ? "+" : "") << CsvTable::fixed(100 * r.change_from_finest, 1)
+         << " % | " << CsvTable::fixed(r.deform_ms, 0) << " |\n";
     }
   }
   scenes::writeFileAtomically(dir + "/converge.csv", csv.text());

@@ -20,12 +20,6 @@ constexpr std::size_t kK = 8;
 const char* const kFields[] = {"bend", "twist", "crush", "affine"};
 const char* const kMethods[] = {"idw", "mls"};
 
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 /// Millimetres with three significant figures (the affine rows of mls are near float rounding).
 std::string mm(double metres) {
   char text[32];
@@ -52,9 +46,10 @@ void targetTable(std::ostringstream& md, const std::vector<SkinErrorRow>& rows, 
     const SkinErrorRow* mls = findSkinErrorRow(rows, field, "mls", n, kK, kAlpha);
     if (!idw || !mls) continue;
     const double ratio = mls->rms_error_m / idw->rms_error_m;
-    md << "| " << field << " | " << fixed(1e3 * idw->field_max_m, 0) << " | " << mm(idw->rms_error_m) << " | "
-       << mm(mls->rms_error_m) << " | " << fixed(ratio, 3) << " | " << mm(idw->max_error_m) << " | "
-       << mm(mls->max_error_m) << " | " << (ratio <= 0.5 ? "**yes**" : "no") << " |\n";
+    md << "| " << field << " | " << CsvTable::fixed(1e3 * idw->field_max_m, 0) << " | "
+       << mm(idw->rms_error_m) << " | " << mm(mls->rms_error_m) << " | " << CsvTable::fixed(ratio, 3) << " | "
+       << mm(idw->max_error_m) << " | " << mm(mls->max_error_m) << " | " << (ratio <= 0.5 ? "**yes**" : "no")
+       << " |\n";
   }
 }
 
@@ -112,7 +107,8 @@ void plotErrors(const std::vector<SkinErrorRow>& rows, const std::string& dir, b
      << gnuplotQuoted(std::string("The skin alone: ") + (largest ? "largest" : "RMS") +
                       " render-vertex error against N on known fields (builtin:sedan, 20,000 vertices, "
                       "alpha = 3.5)")
-     << "\nset logscale xy\nset grid\nset format y '%g'\nset key outside right top font ',9'\nset xrange [40:3000]\n"
+     << "\nset logscale xy\nset grid\nset format y '%g'\nset key outside right top font ',9'\nset xrange "
+        "[40:3000]\n"
      << "set xlabel 'control points N'\nset ylabel '" << (largest ? "largest" : "RMS")
      << " vertex error [mm]'\n";
   for (const char* field : kFields) {

@@ -15,12 +15,6 @@
 namespace sandbox {
 namespace {
 
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 std::string csvText(const std::vector<TradeoffRow>& rows) {
   CsvTable csv({"scene", "knob", "value", "overrides", "physics_ms", "deform_ms", "embed_ms", "total_ms",
                 "rms_error_mm", "max_error_mm", "rms_error_fraction", "max_error_fraction",
@@ -49,12 +43,12 @@ std::string markdownText(const std::vector<TradeoffRow>& rows) {
          << "| RMS / diagonal | crush m | crush error mm | strain residual | front |\n"
          << "|---|---|---|---|---|---|---|---|---|---|\n";
     }
-    md << "| " << r.knob << " | " << r.value << " | " << fixed(r.total_ms(), 3) << " ("
-       << fixed(r.physics_ms, 3) << " + " << fixed(r.deform_ms, 3) << " + " << fixed(r.embed_ms, 3) << ") | "
-       << fixed(r.rms_error_mm, 2) << " | " << fixed(r.max_error_mm, 1) << " | "
-       << fixed(100 * r.rms_error_fraction, 3) << " % | " << fixed(r.residual_crush_m, 3) << " | "
-       << fixed(r.crush_error_mm, 1) << " | " << fixed(r.strain_residual, 5) << " | "
-       << (r.pareto ? "**yes**" : "") << " |\n";
+    md << "| " << r.knob << " | " << r.value << " | " << CsvTable::fixed(r.total_ms(), 3) << " ("
+       << CsvTable::fixed(r.physics_ms, 3) << " + " << CsvTable::fixed(r.deform_ms, 3) << " + "
+       << CsvTable::fixed(r.embed_ms, 3) << ") | " << CsvTable::fixed(r.rms_error_mm, 2) << " | "
+       << CsvTable::fixed(r.max_error_mm, 1) << " | " << CsvTable::fixed(100 * r.rms_error_fraction, 3)
+       << " % | " << CsvTable::fixed(r.residual_crush_m, 3) << " | " << CsvTable::fixed(r.crush_error_mm, 1)
+       << " | " << CsvTable::fixed(r.strain_residual, 5) << " | " << (r.pareto ? "**yes**" : "") << " |\n";
   }
   return md.str();
 }
