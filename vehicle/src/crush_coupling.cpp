@@ -31,41 +31,29 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
   // ODE collides before it integrates: its contacts are where the car was when the step began, so an
   // obstacle the car reaches during the step would reach deform a step late, with the control points
   // already inside it, and their push-out would throw them back (energy from nowhere). Everything
-  // crushable whose box comes within this step's travel of the points' box is handed to deform now; its
-  // contacts are exact within the substeps, so one that is not reached does nothing.
+  // crushable whose box (this step's, updateBoxes) comes within the step's travel of the points' box is
+  // handed to deform now; its contacts are exact within the substeps, so one not reached does nothing.
   const Car& car = world.car(dc.id);
-  const Pose frame = car.vehiclePose();
-  const double dt = world.fixedDt_s();
-  const auto& points = dc.body->state().positions_m;
-  if (points.empty()) return;
-  Eigen::Vector3d low = points.front(), high = points.front();
+  const Box& mine = car_boxes[dc.id];
   double fastest_point_mps = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    low = low.cwiseMin(points[i]);
-    high = high.cwiseMax(points[i]);
-    fastest_point_mps = std::max(fastest_point_mps, dc.body->state().velocities_mps[i].norm());
-  }
-  const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
-  const double reach_m = 0.5 * (high - low).norm();
+  for (const Eigen::Vector3d& v : dc.body->state().velocities_mps)
+    fastest_point_mps = std::max(fastest_point_mps, v.norm());
+  const Eigen::Vector3d core_world_m = car.vehiclePose().toWorld(dc.body_settings->core_m);
   const EntityRef self{EntityRef::Kind::Car, dc.id};
-  auto consider = [&](EntityRef other) {
+  auto consider = [&](EntityRef other, const Box& box) {
     if (other == self || !crushable(world, other) ||
         std::find(dc.touching.begin(), dc.touching.end(), other) != dc.touching.end())
       return;
-    const ObstacleShape local = transformShape(worldShapeOf(other), frame);
-    const double closing_mps = (velocityOf(other, core_world_m) - velocityOf(self, core_world_m)).norm() +
-                               (angularVelocityOf(other) - car.angularVelocity_rad_s()).norm() * reach_m +
-                               fastest_point_mps;
-    const double margin_m = closing_mps * dt + kApproachMargin_m;
-    for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Vector3d u = Eigen::Vector3d::Unit(axis);
-      if (supportPoint(local, u)[axis] < low[axis] - margin_m) return;
-      if (supportPoint(local, -u)[axis] > high[axis] + margin_m) return;
-    }
-    dc.touching.push_back(other);
+    const double closing_mps =
+        (velocityOf(other, core_world_m) - velocityOf(self, core_world_m)).norm() +
+        (angularVelocityOf(other) - car.angularVelocity_rad_s()).norm() * mine.halfDiagonal_m() +
+        fastest_point_mps;
+    if (mine.grown(closing_mps * world.fixedDt_s() + kApproachMargin_m).overlaps(box))
+      dc.touching.push_back(other);
   };
-  for (ObstacleId o = 0; o < world.obstacleCount(); ++o) consider({EntityRef::Kind::Obstacle, o});
-  for (CarId c = 0; c < world.carCount(); ++c) consider({EntityRef::Kind::Car, c});
+  for (ObstacleId o = 0; o < world.obstacleCount(); ++o)
+    consider({EntityRef::Kind::Obstacle, o}, obstacle_boxes[o]);
+  for (CarId c = 0; c < world.carCount(); ++c) consider({EntityRef::Kind::Car, c}, car_boxes[c]);
 }
 
 void Simulation::Impl::prepareCar(DeformableCar& dc) const {

@@ -6,6 +6,7 @@
 
 #include <vehicle/car_build.hpp>
 
+#include "broad_phase.hpp"
 #include "crush_shapes.hpp"
 
 #include <deform/body_settings.hpp>
@@ -105,6 +106,11 @@ struct Simulation::Impl {
   /// Per car (index into cars): whether it touches another car or a free obstacle this step, so that its
   /// step reads or writes what another car's does (it then runs in the cars' order, on one thread).
   std::vector<uint8_t> coupledCars() const;
+  /// This step's boxes in the world, ungrown (updateBoxes, after ODE's step and the cars' snapshots):
+  /// per CarId its control points (a deformable car) or hull, per ObstacleId its shape (the ground's is
+  /// left empty: a half-space has no box).
+  std::vector<Box> car_boxes, obstacle_boxes;
+  void updateBoxes();
   /// Per car (index into cars): nothing near it this step (simulation_step.cpp's broad phase: boxes of
   /// the control points and obstacles grown by the step's travel; any contact but the ground's counts).
   std::vector<uint8_t> idleCars() const;

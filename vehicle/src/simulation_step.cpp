@@ -18,35 +18,6 @@ double ms(Clock::duration d) {
   return std::chrono::duration<double, std::milli>(d).count();
 }
 
-// An axis-aligned box [m].
-struct Box {
-  Eigen::Vector3d min_m{0, 0, 0}, max_m{0, 0, 0};
-  bool overlaps(const Box& o) const {
-    return (min_m.array() <= o.max_m.array()).all() && (o.min_m.array() <= max_m.array()).all();
-  }
-};
-
-Box boxOf(const std::vector<Eigen::Vector3d>& points_m, double grow_m) {
-  Box box{points_m.front(), points_m.front()};
-  for (const Eigen::Vector3d& p : points_m) {
-    box.min_m = box.min_m.cwiseMin(p);
-    box.max_m = box.max_m.cwiseMax(p);
-  }
-  box.min_m.array() -= grow_m;
-  box.max_m.array() += grow_m;
-  return box;
-}
-
-Box boxOf(const ObstacleShape& shape, double grow_m) {
-  Box box;
-  for (int axis = 0; axis < 3; ++axis) {
-    const Eigen::Vector3d along = Eigen::Vector3d::Unit(axis);
-    box.max_m[axis] = supportPoint(shape, along)[axis] + grow_m;
-    box.min_m[axis] = supportPoint(shape, -along)[axis] - grow_m;
-  }
-  return box;
-}
-
 // What a free obstacle (a knocked tree, a pushed box) may travel in one step, at most [m]: 1 m at 60 Hz
 // is 60 m/s. Its velocity is not the world's to tell; a generous bound keeps the broad phase safe.
 constexpr double kFreeObstacleTravel_m = 1.0;
@@ -86,34 +57,44 @@ std::vector<uint8_t> Simulation::Impl::coupledCars() const {
   return coupled;
 }
 
+void Simulation::Impl::updateBoxes() {
+  car_boxes.assign(world.carCount(), Box{});
+  for (CarId c = 0; c < world.carCount(); ++c) {
+    const bool deforms = c < index_of.size() && index_of[c] >= 0;
+    const std::vector<Eigen::Vector3d>& points =
+        deforms ? of(c).world_shape.vertices_m : world.shapeOf({EntityRef::Kind::Car, c}).vertices_m;
+    const Eigen::Vector3d centre = world.car(c).bodyPose().position_m;
+    car_boxes[c] = points.empty() ? Box{centre, centre} : boxOf(points);
+  }
+  obstacle_boxes.assign(world.obstacleCount(), Box{});
+  for (ObstacleId o = 0; o < world.obstacleCount(); ++o)
+    if (world.obstacleKind(o) != ObstacleKind::Ground) obstacle_boxes[o] = boxOf(world.obstacleShape(o));
+}
+
 std::vector<uint8_t> Simulation::Impl::idleCars() const {
   const double dt = world.fixedDt_s();
-  // Every car's box (deformable ones: their control points now; rigid ones: their hull), grown by the
-  // step's travel: its speed and its turn at its furthest point.
-  std::vector<Box> car_boxes;
+  // Every car's box grown by the step's travel: its speed and its turn at its furthest corner.
+  std::vector<Box> grown_cars;
   for (CarId c = 0; c < world.carCount(); ++c) {
     const Car& car = world.car(c);
-    const bool deforms = c < index_of.size() && index_of[c] >= 0;
-    const std::vector<Eigen::Vector3d> points =
-        deforms ? of(c).world_shape.vertices_m : world.shapeOf({EntityRef::Kind::Car, c}).vertices_m;
+    const Box& box = car_boxes[c];
     const Eigen::Vector3d centre = car.bodyPose().position_m;
-    double radius_m = 0;
-    for (const Eigen::Vector3d& p : points) radius_m = std::max(radius_m, (p - centre).norm());
+    const double radius_m = (centre - box.min_m).cwiseAbs().cwiseMax((box.max_m - centre).cwiseAbs()).norm();
     const double travel_m = (car.velocity_mps().norm() + car.angularVelocity_rad_s().norm() * radius_m) * dt;
-    car_boxes.push_back(points.empty() ? Box{centre, centre} : boxOf(points, travel_m + kBroadPhaseMargin_m));
+    grown_cars.push_back(box.grown(travel_m + kBroadPhaseMargin_m));
   }
-  std::vector<Box> obstacle_boxes;
+  std::vector<Box> obstacle_grown;
   for (ObstacleId o = 0; o < world.obstacleCount(); ++o) {
     if (world.obstacleKind(o) == ObstacleKind::Ground) continue;
     const double grow_m = kBroadPhaseMargin_m + (world.obstacleIsDynamic(o) ? kFreeObstacleTravel_m : 0.0);
-    obstacle_boxes.push_back(boxOf(world.obstacleShape(o), grow_m));
+    obstacle_grown.push_back(obstacle_boxes[o].grown(grow_m));
   }
   std::vector<uint8_t> idle(cars.size(), 1);
   for (std::size_t i = 0; i < cars.size(); ++i) {
-    const Box& mine = car_boxes[cars[i]->id];
-    for (CarId c = 0; c < car_boxes.size() && idle[i]; ++c)
-      if (c != cars[i]->id && mine.overlaps(car_boxes[c])) idle[i] = 0;
-    for (const Box& b : obstacle_boxes)
+    const Box& mine = grown_cars[cars[i]->id];
+    for (CarId c = 0; c < grown_cars.size() && idle[i]; ++c)
+      if (c != cars[i]->id && mine.overlaps(grown_cars[c])) idle[i] = 0;
+    for (const Box& b : obstacle_grown)
       if (idle[i] && mine.overlaps(b)) idle[i] = 0;
   }
   // Any contact but the ground's (the boxes should have said so already).
@@ -169,6 +150,7 @@ void Simulation::step() {
   timings.solve_ms = world.solve_ms;
   t = Clock::now();
   for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
+  m.updateBoxes();
   const std::vector<uint8_t> coupled = m.coupledCars();
   bool any_skips = false;
   for (const auto& dc : m.cars) any_skips = any_skips || dc->settings.skip_when_idle;

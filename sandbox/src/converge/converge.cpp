@@ -2,6 +2,7 @@
 
 #include "build_version.hpp"
 #include "plot.hpp"
+#include "sweep/sweep_case.hpp"
 #include "table_output.hpp"
 
 #include <scenes/scene_file.hpp>
@@ -28,11 +29,7 @@ struct ConvergeRow {
 };
 
 ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
-  const auto number = [&](const char* name) {
-    if (!m.contains(name) || !m[name].is_number())
-      throw deform::InputError("case " + c.id + ": measured." + name + ": missing or not a number");
-    return m[name].get<double>();
-  };
+  const auto number = [&](const char* name) { return measuredNumber(m, name, "case " + c.id); };
   ConvergeRow row;
   row.scene = c.scene;
   row.control_points = c.labels.value("control_points", std::size_t{0});

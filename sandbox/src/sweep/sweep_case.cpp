@@ -104,6 +104,13 @@ std::string encodePoints(const std::vector<Eigen::Vector3f>& points) {
   return text;
 }
 
+double measuredNumber(const nlohmann::json& measured, const std::string& name, const std::string& what) {
+  const auto it = measured.find(name);
+  if (it == measured.end() || !it->is_number())
+    throw deform::InputError(what + ": measured." + name + ": missing or not a number");
+  return it->get<double>();
+}
+
 std::vector<Eigen::Vector3f> decodePoints(const std::string& text, const std::string& what) {
   std::array<int, 256> value;
   value.fill(-1);

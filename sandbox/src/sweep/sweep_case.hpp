@@ -34,4 +34,8 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
 std::string encodePoints(const std::vector<Eigen::Vector3f>& points);
 std::vector<Eigen::Vector3f> decodePoints(const std::string& text, const std::string& what);
 
+/// A number a case measured (`measured[name]`); throws deform::InputError naming `what` and the field
+/// when it is missing or not a number (a merged file from elsewhere).
+double measuredNumber(const nlohmann::json& measured, const std::string& name, const std::string& what);
+
 }  // namespace sandbox

@@ -59,12 +59,7 @@ struct Played {
 // A case's measure (measureTradeoffCase) back as a row and its render mesh.
 Played played(const SweepCase& sweep_case, const nlohmann::json& measured) {
   const std::string what = "case " + sweep_case.id;
-  const auto number = [&](const char* name) {
-    const auto it = measured.find(name);
-    if (it == measured.end() || !it->is_number())
-      throw deform::InputError(what + ": measured." + name + ": missing or not a number");
-    return it->get<double>();
-  };
+  const auto number = [&](const char* name) { return measuredNumber(measured, name, what); };
   const auto text = [&](const char* name) {
     const auto it = measured.find(name);
     if (it == measured.end() || !it->is_string())

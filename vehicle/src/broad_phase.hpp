@@ -1,0 +1,27 @@
+#pragma once
+// Axis-aligned boxes in the world for the broad phases of Simulation's step: which cars are idle
+// (simulation_step.cpp) and what a car's body can reach within a step (crush_coupling.cpp).
+#include <vehicle/obstacle_shape.hpp>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace vehicle {
+
+/// An axis-aligned box [m].
+struct Box {
+  Eigen::Vector3d min_m{0, 0, 0}, max_m{0, 0, 0};
+  bool overlaps(const Box& o) const {
+    return (min_m.array() <= o.max_m.array()).all() && (o.min_m.array() <= max_m.array()).all();
+  }
+  Box grown(double grow_m) const { return {min_m.array() - grow_m, max_m.array() + grow_m}; }
+  /// Half the diagonal [m].
+  double halfDiagonal_m() const { return 0.5 * (max_m - min_m).norm(); }
+};
+
+/// The box around `points_m` (not empty).
+Box boxOf(const std::vector<Eigen::Vector3d>& points_m);
+/// The box around a shape (its support points along the axes); not a half-space.
+Box boxOf(const ObstacleShape& shape);
+
+}  // namespace vehicle
