@@ -111,10 +111,10 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
 uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {
   // A thin obstacle (a bollard, another car's corner) can come through the control surface between its
   // points, where no point is inside it. Points on each triangle, a grid at most kFaceSampleSpacing_m
-  // apart, are queried like the control points; one found inside pushes the triangle's corners out along
-  // the obstacle's normal, weighted by its barycentric coordinates. Every triangle, also one whose corner
-  // the obstacle holds already: skipping those let the surface beside a held point sink into the
-  // obstacle unseen, to be thrown out when the point came free (a box's front edge, 30 kJ from nowhere).
+  // apart, are queried like the control points (with the same margin); one found inside pushes the triangle's
+  // corners out along the obstacle's normal, weighted by its barycentric coordinates. Every triangle, also
+  // one whose corner the obstacle holds already: skipping those let the surface beside a held point sink into
+  // the obstacle unseen, to be thrown out when the point came free (a box's front edge, 30 kJ from nowhere).
   constexpr double kFaceSampleSpacing_m = 0.1;
   constexpr int kMostSamplesPerEdge = 8;
   Eigen::Vector3d centre;
@@ -166,10 +166,14 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
         const Eigen::Vector3d bary(static_cast<double>(i) / k, static_cast<double>(j) / k,
                                    static_cast<double>(k - i - j) / k);
         const Eigen::Vector3d q = bary[0] * a + bary[1] * b + bary[2] * c;
-        if (!penetration(shape, q, p, 0.0) || !(p.depth_m > 0)) continue;
+        // Within the contact margin, as the control points: a sample just outside gets a contact that acts
+        // only once violated, so the corrections of this substep cannot leave it inside unseen, to be
+        // thrown out at the next one with the speed of its depth (a pole at 2000 points: -5.8 kJ of
+        // contact loss, energy from nowhere, of which -6.3 kJ by samples inside at the substep's start).
+        if (!penetration(shape, q, p, params_.contact_margin_m)) continue;
         const Eigen::Vector3d surface_m = q + p.depth_m * p.normal;
         face_contacts_.push_back({shape_index, t, bary, p.normal, surface_m});
-        ++found;
+        found += p.depth_m > 0;
       }
     }
   }
