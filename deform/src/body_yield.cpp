@@ -69,6 +69,8 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     report.contact_impulse_Ns += impulse_Ns;
     report.core_impulse_Ns += impulse_Ns;
     report.core_angular_impulse_Nms += (lever_sum / total_m).cross(impulse_Ns);
+    report.contact_moment_Nms += (core_start - settings.core_m + lever_sum / total_m).cross(impulse_Ns);
+    report.obstacle_work_J += impulse_Ns.dot(obstacle);
     core += move;
   }
   // The rest are pulled back to the cap; their reactions move the heavy core, which moves every rest

@@ -305,11 +305,15 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
   // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
   // impulse J = m dx / h against the obstacle's velocity relative to the core.
-  double contact_work_x_h = 0;
+  double contact_work_x_h = 0, obstacle_work_x_h = 0;
+  Eigen::Vector3d contact_moment_x_h{0, 0, 0};
   auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
     contact_push += m[i] * dx;
     report.contact_impulse_per_obstacle_Ns[shape] += (m[i] * inv_h) * dx;
-    contact_work_x_h += m[i] * dx.dot(obstacleVelocity(inputs, shape, previous_m_[i]) - core_velocity_mps_);
+    const Eigen::Vector3d obstacle_mps = obstacleVelocity(inputs, shape, previous_m_[i]);
+    contact_work_x_h += m[i] * dx.dot(obstacle_mps - core_velocity_mps_);
+    obstacle_work_x_h += m[i] * dx.dot(obstacle_mps);
+    contact_moment_x_h += (previous_m_[i] - settings.core_m).cross(m[i] * dx);
   };
   // The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
   // unlimited sweep reads no yield arrays, so it costs what it did before they existed.
@@ -422,6 +426,8 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   report.contact_loss_J += contactLoss(inputs, h);
   for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
   report.contact_work_J += contact_work_x_h * inv_h;
+  report.obstacle_work_J += obstacle_work_x_h * inv_h;
+  report.contact_moment_Nms += contact_moment_x_h * inv_h;
   core_velocity_mps_ = (core - core_start) * inv_h;
   core_shift_m_ = core - settings.core_m;
   to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;

@@ -312,11 +312,11 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
   j["energy"] = {
       {"kinetic_initial_J", m.energy.kinetic_initial_J}, {"plastic_work_J", m.energy.plastic_work_J},
       {"damping_loss_J", m.energy.damping_loss_J},       {"contact_work_J", m.energy.contact_work_J},
-      {"inertial_work_J", m.energy.inertial_work_J},     {"dissipated_J", m.energy.dissipated_J},
-      {"kinetic_final_J", m.energy.kinetic_final_J},     {"crush_work_J", m.energy.crush_work_J},
-      {"other_work_J", m.energy.other_work_J},           {"body_energy_J", m.energy.body_energy_J},
-      {"balance_error_J", m.energy.balance_error_J},     {"contact_loss_J", m.energy.contact_loss_J},
-      {"elastic_energy_J", m.energy.elastic_energy_J}};
+      {"inertial_work_J", m.energy.inertial_work_J},     {"obstacle_work_J", m.energy.obstacle_work_J},
+      {"dissipated_J", m.energy.dissipated_J},           {"kinetic_final_J", m.energy.kinetic_final_J},
+      {"crush_work_J", m.energy.crush_work_J},           {"other_work_J", m.energy.other_work_J},
+      {"body_energy_J", m.energy.body_energy_J},         {"balance_error_J", m.energy.balance_error_J},
+      {"contact_loss_J", m.energy.contact_loss_J},       {"elastic_energy_J", m.energy.elastic_energy_J}};
   j["max_deviation_m"] = m.max_deviation_m;
   j["max_penetration_m"] = m.max_penetration_m;
   j["tunnelled"] = m.tunnelled;

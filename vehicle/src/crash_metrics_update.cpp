@@ -41,6 +41,7 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     dc.damping_at_impact_J = dc.damping_loss_J;
     dc.contact_work_at_impact_J = dc.contact_work_J;
     dc.inertial_work_at_impact_J = dc.inertial_work_J;
+    dc.obstacle_work_at_impact_J = dc.obstacle_work_J;
   }
   // The impact normal: the depth-weighted normals of the contacts with what was hit over the first 10 ms
   // (the very first contact of two rounded fronts can have any normal).
@@ -102,9 +103,10 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   e.elastic_energy_J = dc.elastic_after_step_J - dc.elastic_at_impact_J;
   e.contact_work_J = dc.contact_work_J - dc.contact_work_at_impact_J;
   e.inertial_work_J = dc.inertial_work_J - dc.inertial_work_at_impact_J;
+  e.obstacle_work_J = dc.obstacle_work_J - dc.obstacle_work_at_impact_J;
   e.dissipated_J = e.damping_loss_J + e.contact_loss_J + e.other_work_J;
-  e.balance_error_J = e.kinetic_initial_J - e.kinetic_final_J - e.plastic_work_J - e.damping_loss_J -
-                      e.contact_loss_J - e.elastic_energy_J - e.other_work_J;
+  e.balance_error_J = e.kinetic_initial_J + e.obstacle_work_J - e.kinetic_final_J - e.plastic_work_J -
+                      e.damping_loss_J - e.contact_loss_J - e.elastic_energy_J - e.other_work_J;
 }
 
 CrashMetrics Simulation::metrics(CarId car) const {

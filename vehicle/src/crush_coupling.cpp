@@ -81,6 +81,8 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   // pitches turns the other way.
   const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
   const EntityRef self{EntityRef::Kind::Car, dc.id};
+  dc.frame_velocity_mps = to_vehicle * velocityOf(self, core_world_m);
+  dc.frame_omega_radps = to_vehicle * car.angularVelocity_rad_s();
   dc.inputs = {};
   deform::StepInputs& inputs = dc.inputs;
   inputs.contact_friction = dc.settings.contact_friction;
@@ -193,6 +195,11 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
   dc.inertial_work_J += report.inertial_work_J;
+  // The obstacles' work in the world: deform's is in the frame of the chassis as the step began.
+  const double obstacle_work_J = report.obstacle_work_J +
+                                 report.contact_impulse_Ns.dot(dc.frame_velocity_mps) +
+                                 report.contact_moment_Nms.dot(dc.frame_omega_radps);
+  if (std::isfinite(obstacle_work_J)) dc.obstacle_work_J += obstacle_work_J;
   dc.contact_loss_J += report.contact_loss_J;
   dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(dc.in_ode_contact));
   for (std::size_t k = dc.in_ode_contact; k < dc.touching.size(); ++k)
@@ -211,6 +218,8 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
     const double kinetic_before_J = kineticEnergy(car);
     // The moment turns chassis and shell together: the points live in the chassis's frame, so the shell
     // turns with it rigidly and takes its share, I_s I^-1, of the angular momentum.
+    // (Known: the shell's own rotary inertia, held against the car's angular acceleration, is shared too,
+    // which takes (I_c + I_s)^-1 I_s of it too little; docs/CRASH_CALIBRATION.md, "Energy account".)
     const Eigen::Vector3d lever = dc.body_settings->core_m - car.centreOfMass_m();
     const Eigen::Vector3d moment = dc.chassis_share_of_rotation.transpose() *
                                    (lever.cross(report.core_impulse_Ns) + report.core_angular_impulse_Nms);

@@ -85,6 +85,12 @@ struct DeformableCar {
   double contact_work_at_impact_J = 0;
   double inertial_work_J = 0;  ///< deform's, since the start [J]
   double inertial_work_at_impact_J = 0;
+  /// Work the obstacles' motion did on the car through its body, in the world, since the start [J].
+  double obstacle_work_J = 0;
+  double obstacle_work_at_impact_J = 0;
+  /// The chassis's velocity at the core and its turn when the step began (vehicle frame): the frame in
+  /// which deform took the obstacles' motion, to take their work back to the world [m/s], [rad/s].
+  Eigen::Vector3d frame_velocity_mps{0, 0, 0}, frame_omega_radps{0, 0, 0};
   double contact_loss_J = 0;  ///< deform's, since the start [J]
   double contact_loss_at_impact_J = 0, contact_loss_before_step_J = 0;
   double elastic_at_impact_J = 0, elastic_before_step_J = 0;  ///< the body's elastic energy [J]

@@ -46,9 +46,10 @@ void visitMetrics(Io& io, Metrics& m) {
   real(m.max_dent_m);
   real(m.max_dynamic_crush_m);
   auto& e = m.energy;
-  for (auto* x : {&e.kinetic_initial_J, &e.plastic_work_J, &e.damping_loss_J, &e.contact_loss_J,
-                  &e.elastic_energy_J, &e.contact_work_J, &e.inertial_work_J, &e.dissipated_J,
-                  &e.kinetic_final_J, &e.crush_work_J, &e.other_work_J, &e.body_energy_J, &e.balance_error_J})
+  for (auto* x :
+       {&e.kinetic_initial_J, &e.plastic_work_J, &e.damping_loss_J, &e.contact_loss_J, &e.elastic_energy_J,
+        &e.contact_work_J, &e.inertial_work_J, &e.dissipated_J, &e.kinetic_final_J, &e.crush_work_J,
+        &e.other_work_J, &e.body_energy_J, &e.balance_error_J, &e.obstacle_work_J})
     real(*x);
   real(m.max_deviation_m);
   real(m.max_penetration_m);
@@ -71,6 +72,8 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
   out.u64(static_cast<uint64_t>(dc.quiet_steps));
   out.vec(dc.previous_velocity_mps);
   out.vec(dc.previous_omega_radps);
+  out.vec(dc.frame_velocity_mps);
+  out.vec(dc.frame_omega_radps);
   const CrashMetrics& metrics = dc.metrics;
   visitMetrics(out, metrics);
   out.vec(dc.impact_normal);
@@ -88,7 +91,7 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
         dc.damping_at_impact_J, dc.contact_work_J, dc.contact_work_at_impact_J, dc.contact_loss_J,
         dc.contact_loss_at_impact_J, dc.contact_loss_before_step_J, dc.elastic_at_impact_J,
         dc.elastic_before_step_J, dc.step_crush_work_J, dc.step_other_work_J, dc.elastic_after_step_J,
-        dc.inertial_work_J, dc.inertial_work_at_impact_J})
+        dc.inertial_work_J, dc.inertial_work_at_impact_J, dc.obstacle_work_J, dc.obstacle_work_at_impact_J})
     out.real(x);
 }
 
@@ -106,6 +109,8 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
   dc.quiet_steps = static_cast<int>(quiet);
   dc.previous_velocity_mps = in.vec();
   dc.previous_omega_radps = in.vec();
+  dc.frame_velocity_mps = in.vec();
+  dc.frame_omega_radps = in.vec();
   visitMetrics(in, dc.metrics);
   dc.impact_normal = in.vec();
   dc.impact_direction_vehicle = in.vec();
@@ -124,7 +129,8 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
         &dc.damping_at_impact_J, &dc.contact_work_J, &dc.contact_work_at_impact_J, &dc.contact_loss_J,
         &dc.contact_loss_at_impact_J, &dc.contact_loss_before_step_J, &dc.elastic_at_impact_J,
         &dc.elastic_before_step_J, &dc.step_crush_work_J, &dc.step_other_work_J, &dc.elastic_after_step_J,
-        &dc.inertial_work_J, &dc.inertial_work_at_impact_J})
+        &dc.inertial_work_J, &dc.inertial_work_at_impact_J, &dc.obstacle_work_J,
+        &dc.obstacle_work_at_impact_J})
     *x = in.real();
   // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
   dc.touching.clear();

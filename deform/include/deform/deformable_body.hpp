@@ -44,6 +44,14 @@ struct StepReport {
   /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the
   /// obstacle's velocity V relative to the chassis) [J]: what the obstacles put into the body.
   double contact_work_J = 0;
+  /// The same in the step's own frame (the chassis as the step began, in which StepInputs gives the
+  /// obstacles' motion; the core moving within it is not subtracted), rigid stops at the cap included [J].
+  /// With contact_impulse_Ns and contact_moment_Nms a caller has the obstacles' work in any frame: in the
+  /// world, with the chassis's velocity v at core_m and its turn w, W + J . v + M . w (zero for an obstacle
+  /// at rest in the world).
+  double obstacle_work_J = 0;
+  /// Angular impulse about core_m of everything the obstacles did (contact_impulse_Ns's moment) [N m s].
+  Eigen::Vector3d contact_moment_Nms{0, 0, 0};
   /// Work the inertial (fictitious) forces of the chassis's motion and gravity did on the points' motion
   /// relative to the chassis, sum m a . travel over the predictions [J]: what a chassis stopped by
   /// something else than the body (ODE's rigid contact) puts into the shell.

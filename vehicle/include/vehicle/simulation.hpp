@@ -130,6 +130,9 @@ struct EnergyTerms {
   /// Work the chassis's inertial forces and gravity did on the body in its frame
   /// (StepReport::inertial_work_J) [J].
   double inertial_work_J = 0;
+  /// Work the obstacles' own motion did on the car through its body, in the world [J]: zero for what stands
+  /// still (a wall, a post), what another car or a falling tree put in (or took out) otherwise.
+  double obstacle_work_J = 0;
   /// damping_loss_J + contact_loss_J + other_work_J: what left the car other than as plastic work [J].
   double dissipated_J = 0;
   double kinetic_final_J = 0;  ///< the whole car's kinetic energy now [J]
@@ -140,8 +143,9 @@ struct EnergyTerms {
   /// backstop, the ground), drag, and gravity on the whole car (raising it) [J].
   double other_work_J = 0;
   double body_energy_J = 0;  ///< elastic plus kinetic energy held in the body relative to the chassis now [J]
-  /// kinetic_initial - kinetic_final - plastic - damping - contact loss - elastic - other work [J]: the
-  /// energy no measured term explains (the XPBD solve's own numerical loss, docs/CRASH_CALIBRATION.md).
+  /// kinetic_initial + obstacle work - kinetic_final - plastic - damping - contact loss - elastic - other
+  /// work [J]: the energy no measured term explains (the XPBD solve's own numerical loss,
+  /// docs/CRASH_CALIBRATION.md).
   double balance_error_J = 0;
 };
 
