@@ -47,6 +47,17 @@ void finishControlMesh(ControlMesh& mesh) {
   mesh.centre_of_mass_m = volume > 0 ? Eigen::Vector3d(ref + moment / volume) : ref;
 }
 
+double enclosedVolume_m3(const std::vector<Eigen::Vector3d>& points_m,
+                         const std::vector<std::array<uint32_t, 3>>& triangles) {
+  Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+  for (const auto& p : points_m) ref += p;
+  if (!points_m.empty()) ref /= static_cast<double>(points_m.size());
+  double volume = 0;
+  for (const auto& t : triangles)
+    volume += (points_m[t[0]] - ref).dot((points_m[t[1]] - ref).cross(points_m[t[2]] - ref)) / 6.0;
+  return volume;
+}
+
 ControlMeshStats controlMeshStats(const ControlMesh& mesh) {
   ControlMeshStats stats;
   stats.shortest_edge_m = mesh.edges.empty() ? 0 : std::numeric_limits<double>::infinity();

@@ -307,6 +307,7 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
   j["residual_crush_m"] = m.residual_crush_m;
   j["max_residual_crush_m"] = m.max_residual_crush_m;
   j["max_dynamic_crush_m"] = m.max_dynamic_crush_m;
+  j["crushed_volume_m3"] = m.crushed_volume_m3;
   // dissipated_J holds other_work_J (tyres, engine, drag, gravity, rigid contacts): negative when the
   // engine put more in than those took out. The parts are listed so that the balance can be read.
   j["energy"] = {

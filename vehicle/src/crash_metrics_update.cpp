@@ -115,6 +115,9 @@ CrashMetrics Simulation::metrics(CarId car) const {
   if (!out.impacted) return out;
   // At the height of the struck end's most protruding rest point (the bumper, for a frontal impact).
   const auto& rest = dc.body_settings->rest_positions_m;
+  out.crushed_volume_m3 =
+      dc.build->control_mesh.volume_m3 -
+      deform::enclosedVolume_m3(dc.body->state().positions_m, dc.build->control_mesh.triangles);
   std::size_t lead = 0;
   for (std::size_t i = 1; i < rest.size(); ++i)
     if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;

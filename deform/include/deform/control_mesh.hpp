@@ -85,6 +85,11 @@ ControlMesh triangulateOnConvexSurface(const std::vector<Eigen::Vector3d>& point
 /// Gaps, edge lengths and area of `mesh`.
 ControlMeshStats controlMeshStats(const ControlMesh& mesh);
 
+/// Volume enclosed by the closed, outward-wound surface `triangles` over `points_m` (a fan of tetrahedra
+/// from the points' mean, the divergence theorem) [m^3]; with the rest points, ControlMesh::volume_m3.
+double enclosedVolume_m3(const std::vector<Eigen::Vector3d>& points_m,
+                         const std::vector<std::array<uint32_t, 3>>& triangles);
+
 /// Recomputes edges (with wings), volume and centre of mass from points_m and triangles.
 void finishControlMesh(ControlMesh& mesh);
 

@@ -24,8 +24,9 @@ struct ConvergeRow {
   std::string scene;
   std::size_t control_points = 0;
   double residual_crush_m = 0, max_residual_crush_m = 0, max_dynamic_crush_m = 0, max_dent_m = 0;
-  double restitution = 0, plastic_work_J = 0, kinetic_initial_J = 0, deform_ms = 0;
-  double change_from_finest = 0;  ///< residual crush relative to the finest level's, minus one [1]
+  double restitution = 0, plastic_work_J = 0, kinetic_initial_J = 0, deform_ms = 0, crushed_volume_m3 = 0;
+  double change_from_finest = 0;         ///< residual crush relative to the finest level's, minus one [1]
+  double volume_change_from_finest = 0;  ///< crushed volume relative to the finest level's, minus one [1]
 };
 
 ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
@@ -37,6 +38,7 @@ ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
   row.max_residual_crush_m = number("max_residual_crush_m");
   row.max_dynamic_crush_m = number("max_dynamic_crush_m");
   row.max_dent_m = number("max_dent_m");
+  row.crushed_volume_m3 = number("crushed_volume_m3");
   row.restitution = number("restitution");
   row.plastic_work_J = number("plastic_work_J");
   row.kinetic_initial_J = number("kinetic_initial_J");
@@ -48,27 +50,32 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                   const std::string& dir) {
   CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
                 "max_dent_m", "restitution", "plastic_work_J", "kinetic_initial_J", "change_from_finest",
-                "deform_ms"});
+                "deform_ms", "crushed_volume_m3", "volume_change_from_finest"});
   std::ostringstream md;
-  md << "Residual crush (six-station average) against the level of detail; the change is against the finest "
-        "level.\n";
+  md << "Residual crush (six-station average) and crushed volume (the control surface's, at rest less now) "
+        "against the level of detail; each change is against the finest level.\n";
   for (const std::string& name : names) {
     md << "\n### " << name << "\n\n| control points | residual crush m | largest m | dynamic crush m "
-       << "| deepest dent m | restitution | plastic / impact energy | change from finest | deform ms |\n"
-       << "|---|---|---|---|---|---|---|---|---|\n";
+       << "| deepest dent m | restitution | plastic / impact energy | change from finest | crushed volume L "
+       << "| its change | deform ms |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConvergeRow& r : rows) {
       if (r.scene != name) continue;
       csv.addRow({r.scene, std::to_string(r.control_points), CsvTable::number(r.residual_crush_m),
                   CsvTable::number(r.max_residual_crush_m), CsvTable::number(r.max_dynamic_crush_m),
                   CsvTable::number(r.max_dent_m), CsvTable::number(r.restitution),
                   CsvTable::number(r.plastic_work_J), CsvTable::number(r.kinetic_initial_J),
-                  CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms)});
+                  CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms),
+                  CsvTable::number(r.crushed_volume_m3), CsvTable::number(r.volume_change_from_finest)});
       md << "| " << r.control_points << " | " << CsvTable::fixed(r.residual_crush_m, 3) << " | "
          << CsvTable::fixed(r.max_residual_crush_m, 3) << " | " << CsvTable::fixed(r.max_dynamic_crush_m, 3)
          << " | " << CsvTable::fixed(r.max_dent_m, 3) << " | " << CsvTable::fixed(r.restitution, 3) << " | "
          << CsvTable::fixed(100 * r.plastic_work_J / std::max(r.kinetic_initial_J, 1e-9), 0) << " % | "
          << (r.change_from_finest >= 0 ? "+" : "") << CsvTable::fixed(100 * r.change_from_finest, 1)
-         << " % | " << CsvTable::fixed(r.deform_ms, 0) << " |\n";
+         << " % | " << CsvTable::fixed(1e3 * r.crushed_volume_m3, 1) << " | "
+         << (r.volume_change_from_finest >= 0 ? "+" : "")
+         << CsvTable::fixed(100 * r.volume_change_from_finest, 1) << " % | "
+         << CsvTable::fixed(r.deform_ms, 0) << " |\n";
     }
   }
   scenes::writeFileAtomically(dir + "/converge.csv", csv.text());
@@ -90,7 +97,8 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
     std::ostringstream points;
     for (const ConvergeRow& r : rows)
       if (r.scene == names[k])
-        points << r.control_points << "," << r.residual_crush_m << "," << r.max_dent_m << "\n";
+        points << r.control_points << "," << r.residual_crush_m << "," << r.max_dent_m << ","
+               << 1e3 * r.crushed_volume_m3 << "\n";
     scenes::writeFileAtomically(data, points.str());
     const std::string colour = colours[k % 4];
     gp << (k ? ", \\\n  " : "") << gnuplotQuoted(data) << " using 1:2 with linespoints lw 2 pt 7 lc rgb '"
@@ -100,6 +108,22 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
   }
   gp << "\n";
   if (runGnuplot(base + ".gp", gp.str())) std::printf("wrote %s.png\n", base.c_str());
+
+  // Crushed volume against N: what the material absorbs energy for, whatever the dent's shape.
+  std::ostringstream volume;
+  volume
+      << "set terminal pngcairo size 1100,700 font 'DejaVu Sans,11' noenhanced\n"
+      << "set output " << gnuplotQuoted(base + "_volume.png") << "\n"
+      << "set title 'Crushed volume against the level of detail (built-in sedan)'\n"
+      << "set logscale x\nset grid\nset key bottom right box opaque\nset xrange [40:3000]\nset yrange [0:*]\n"
+      << "set xlabel 'control points N'\nset ylabel 'crushed volume [L]'\nset datafile separator ','\n"
+      << "plot ";
+  for (std::size_t k = 0; k < names.size(); ++k)
+    volume << (k ? ", \\\n  " : "") << gnuplotQuoted(base + "_" + names[k] + ".csv")
+           << " using 1:4 with linespoints lw 2 pt 7 lc rgb '" << colours[k % 4] << "' title "
+           << gnuplotQuoted(names[k]);
+  volume << "\n";
+  if (runGnuplot(base + "_volume.gp", volume.str())) std::printf("wrote %s_volume.png\n", base.c_str());
 }
 
 }  // namespace
@@ -139,11 +163,17 @@ void writeConvergeReport(const SweepPlan& plan, const std::vector<nlohmann::json
   }
   std::fflush(stdout);
   for (const std::string& name : names) {
-    double finest = 0;  // the last (finest) level of the scene
+    double finest = 0, finest_volume = 0;  // the last (finest) level of the scene
     for (const ConvergeRow& r : rows)
-      if (r.scene == name) finest = r.residual_crush_m;
-    for (ConvergeRow& r : rows)
-      if (r.scene == name) r.change_from_finest = finest > 0 ? r.residual_crush_m / finest - 1.0 : 0.0;
+      if (r.scene == name) {
+        finest = r.residual_crush_m;
+        finest_volume = r.crushed_volume_m3;
+      }
+    for (ConvergeRow& r : rows) {
+      if (r.scene != name) continue;
+      r.change_from_finest = finest > 0 ? r.residual_crush_m / finest - 1.0 : 0.0;
+      r.volume_change_from_finest = finest_volume > 0 ? r.crushed_volume_m3 / finest_volume - 1.0 : 0.0;
+    }
   }
   std::filesystem::create_directories(dir);
   writeOutputs(rows, names, dir);

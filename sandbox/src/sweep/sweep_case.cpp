@@ -35,6 +35,7 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
           {"max_residual_crush_m", m.max_residual_crush_m},
           {"max_dynamic_crush_m", m.max_dynamic_crush_m},
           {"max_dent_m", m.max_dent_m},
+          {"crushed_volume_m3", m.crushed_volume_m3},
           {"restitution", m.restitution},
           {"plastic_work_J", m.energy.plastic_work_J},
           {"kinetic_initial_J", m.energy.kinetic_initial_J},

@@ -169,6 +169,11 @@ struct CrashMetrics {
   double max_dent_m = 0;
   /// Largest displacement of the car into what it hit since first contact (the dynamic crush) [m].
   double max_dynamic_crush_m = 0;
+  /// Volume the control surface encloses at rest less what it encloses now [m^3]: the crushed volume,
+  /// which a material of crush strength sigma absorbs about sigma x volume for. Unlike a depth it does not
+  /// depend on how wide the level of detail spreads a dent (a pole's notch at fine N, a shallow trough at
+  /// coarse N).
+  double crushed_volume_m3 = 0;
   EnergyTerms energy;
   double max_deviation_m = 0;  ///< largest |c_i - c_i0| ever [m]
   double max_penetration_m =
