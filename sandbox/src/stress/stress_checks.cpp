@@ -55,13 +55,13 @@ RunVerdict checkRun(const scenes::SceneRun& run) {
       if (e.plastic_work_J + e.damping_loss_J > e.contact_work_J + e.inertial_work_J + tolerance_J)
         verdict.fail(car + "the body holds more energy than what hit it put in");
     }
-    char figures[320];
+    char figures[384];
     std::snprintf(figures, sizeof figures,
                   "%simpact %.1f km/h, crush %.3f m (largest %.3f), deviation %.3f of %.2f m, plastic %.3g J "
-                  "of %.3g J, restitution %.2f, penetration %.1f mm",
+                  "of %.3g J, unexplained %.3g J, restitution %.2f, penetration %.1f mm",
                   car.c_str(), 3.6 * m.impact_speed_mps, m.residual_crush_m, m.max_residual_crush_m,
-                  m.max_deviation_m, cap_m, e.plastic_work_J, e.kinetic_initial_J, m.restitution,
-                  1e3 * m.max_penetration_m);
+                  m.max_deviation_m, cap_m, e.plastic_work_J, e.kinetic_initial_J, e.balance_error_J,
+                  m.restitution, 1e3 * m.max_penetration_m);
     verdict.figures += (verdict.figures.empty() ? "" : "; ") + std::string(figures);
   }
   return verdict;
