@@ -28,6 +28,23 @@ std::string vehicleKey(const SceneConfig& scene, std::size_t index) {
                                                   : "vehicles[" + std::to_string(index) + "]";
 }
 
+// A body denser than any solid is a wrong mass or a mesh in the wrong units (millimetres read as metres):
+// its points would be flung metres from a body centimetres wide (a drinks can of 1500 kg, 4e6 kg/m^3,
+// spun its chassis without bound). Bounded from below by the bounding box, so no real vehicle is refused.
+void refuseDenserThanAnySolid(const VehicleConfig& v, const deform::VehicleModel& model,
+                              const std::string& where) {
+  constexpr double kOsmium_kg_per_m3 = 22.59e3;  // the densest element
+  const double box_m3 = deform::boundingBox(model.body).size_m().prod();
+  if (!(box_m3 > 0) || v.mass_kg / box_m3 <= kOsmium_kg_per_m3) return;
+  char figures[160];
+  std::snprintf(figures, sizeof figures, " holds %.3g L: %g kg is denser than %.3g kg/m^3,", 1e3 * box_m3,
+                v.mass_kg, v.mass_kg / box_m3);
+  throw deform::InputError(
+      where + ".mass_kg: the bounding box of " + v.mesh + figures +
+      " more than any solid (osmium: 22,590 kg/m^3): check the mass, or the mesh's units "
+      "(mesh_scale)");
+}
+
 // Re-throws an InputError from the vehicle or mesh side with the scene file and key path in front.
 template <typename F>
 auto withSource(const std::string& where, F&& f) {
@@ -144,6 +161,7 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
       });
     }
     const deform::VehicleModel& model = *shared;
+    refuseDenserThanAnySolid(v, model, where);
     vehicle::VehicleSettings base;
     base.wheels = vehicle::wheelsFromModel(base, model);
     if (v.wheels_in_body && model.wheels.empty()) {

@@ -99,6 +99,12 @@ TEST_CASE("a car placed inside an obstacle or another car at the start is refuse
              Catch::Contains("wall_crash.json: vehicle (sedan) overlaps obstacles[0] at the start by 0.19"));
   CHECK_THAT(refusal("car_to_car", "vehicles[1].start.position_m=[2,0]"),
              Catch::Contains("vehicles[0] (striking) overlaps vehicles[1] (struck)"));
+  // A car denser than any solid: a wrong mass or a mesh in the wrong units (a 1500 kg drinks can spun
+  // its chassis without bound). The heaviest sedan the stress suite drives (40 t) is 3,300 kg/m^3.
+  CHECK_THAT(
+      refusal("wall_crash", "vehicle.mesh=builtin:can"),
+      Catch::Contains("wall_crash.json: vehicle.mass_kg: the bounding box of builtin:can holds 0.531 L"));
+  CHECK(refusal("wall_crash", "vehicle.mass_kg=40000") == "(accepted)");
   // Touching (the wall's near face 5 mm into the bumper, within the 1 cm allowed) is not refused.
   CHECK(refusal("wall_crash", "obstacles[0].position_m=[2.695,0]") == "(accepted)");
 }
