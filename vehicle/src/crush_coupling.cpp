@@ -156,13 +156,15 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
 
   // The chassis's motion over ODE's step (its forces only: the body's reaction of the last step moved the
   // points with it). Crush: ODE moved the chassis alone, but its forces (tyres, ODE contacts) act on the
-  // whole car, chassis and shell: the car's acceleration is gravity plus M_c / M of the rest, and the
-  // shell held against that hands the chassis its weight and inertia in this step. The rotation is ODE's
-  // unscaled: the shell's reaction to it, -I_s alpha dt, is shared below with the rest of the moment
-  // (I_c I^-1), so the chassis turns by alpha - I^-1 I_s alpha = I^-1 I_c alpha, the whole car's. Fed
-  // I^-1 I_c alpha, the shared reaction held the turn back (I^-1 I_s)^2 alpha too little: it changed
-  // faster than ODE's torques do work (pole_side at 60 / 300 / 2000 points: +8.5 / +5.8 / +1.6 % lost
-  // -> +3.9 / +2.2 / -1.3 %). Visual: scaled by inertial_scale.
+  // whole car, chassis and shell: the car's acceleration is gravity plus M_c / M of the rest, and its
+  // angular acceleration (I_c + I_s)^-1 I_c of ODE's. The shell held against that hands the chassis its
+  // inertia in this step, so the chassis ends with the whole car's motion (the shell's weight included).
+  // (Known: finishCar shares that reaction again, I_c I^-1, so the rotation changes faster than ODE's
+  // torques account for: a car rolled by a side pole at 60 points loses 2.6 kJ no term measures. Holding
+  // the shell against ODE's angular acceleration unscaled closes that, pole_side +8.5 -> +3.9 %, but an
+  // impulsive ODE contact then loads the points with the chassis-only angular acceleration: post_bumps at
+  // 16 substeps created 36 kJ. The chassis's rotation inside deform's substeps is the fix;
+  // docs/CRASH_CALIBRATION.md, "Energy account".) Visual: scaled by inertial_scale.
   if (crush || dc.settings.inertial_scale > 0) {
     const Eigen::Vector3d gravity = world.settings().gravity_mps2;
     Eigen::Vector3d acceleration = (car.velocity_mps() - dc.previous_velocity_mps) / dt;
@@ -170,6 +172,7 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
         to_vehicle * ((car.angularVelocity_rad_s() - dc.previous_omega_radps) / dt);
     if (crush) {
       acceleration = gravity + (car.chassisMass_kg() / car.mass_kg()) * (acceleration - gravity);
+      angular_acceleration = dc.chassis_share_of_rotation * angular_acceleration;
     }
     inputs.chassis.acceleration_mps2 = to_vehicle * acceleration;
     inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
@@ -219,8 +222,7 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   if (crush && finite) {
     const double kinetic_before_J = kineticEnergy(car);
     // The moment turns chassis and shell together: the points live in the chassis's frame, so the shell
-    // turns with it rigidly and takes its share, I_s I^-1, of the angular momentum. That includes the
-    // shell's own rotary inertia against ODE's angular acceleration (prepareCar).
+    // turns with it rigidly and takes its share, I_s I^-1, of the angular momentum.
     const Eigen::Vector3d lever = dc.body_settings->core_m - car.centreOfMass_m();
     const Eigen::Vector3d moment = dc.chassis_share_of_rotation.transpose() *
                                    (lever.cross(report.core_impulse_Ns) + report.core_angular_impulse_Nms);
