@@ -89,7 +89,8 @@ struct DeformableCar {
   double obstacle_work_J = 0;
   double obstacle_work_at_impact_J = 0;
   /// The chassis's velocity at the core and its turn when the step began (vehicle frame): the frame in
-  /// which deform took the obstacles' motion, to take their work back to the world [m/s], [rad/s].
+  /// which deform took the obstacles' motion, to take their work back to the world [m/s], [rad/s]. Set by
+  /// prepareCar every step, so not part of the saved state.
   Eigen::Vector3d frame_velocity_mps{0, 0, 0}, frame_omega_radps{0, 0, 0};
   double contact_loss_J = 0;  ///< deform's, since the start [J]
   double contact_loss_at_impact_J = 0, contact_loss_before_step_J = 0;

@@ -177,8 +177,7 @@ inline bool projectVisual(Eigen::Vector3d& x, const Eigen::Vector3d& x0, double 
 /// points about the core, -sum_i m_i (x_i - core) x d_x_i [kg m^2]: the core's reaction. That is -A mu = G
 /// only while x = x0; a crushed shell (front 0.75 m in) moved by mu x r_i at levers x_i - core takes a
 /// different moment, and reporting G made the body a torque on itself (repeated_impacts: ~6 kN m of yaw
-/// while driving straight, 22 kJ created; with the car's rotation shared correctly, a spin-up to 2.9
-/// rad/s). Adds sum_i m_i d_x_i to `push` [kg m].
+/// while driving straight, 22 kJ created). Adds sum_i m_i d_x_i to `push` [kg m].
 inline Eigen::Vector3d removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0,
                                            const double* mass_kg, std::size_t n,
                                            const Eigen::Vector3d& core_m,

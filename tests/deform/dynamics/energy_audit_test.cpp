@@ -4,8 +4,6 @@
 // from the geometry, 1/2 C^2 / alpha). Each term is measured on its own; what is left is the solver's own
 // numerical loss (XPBD is implicit Euler in each substep: a constraint loaded by dx in a substep takes
 // k dx^2 / 2 more than it stores). It may be lost, never created.
-#include "fixtures.hpp"
-
 #include <catch2/catch.hpp>
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>

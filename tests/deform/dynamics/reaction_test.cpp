@@ -108,11 +108,10 @@ TEST_CASE("Angular momentum: a crushed shell holding itself hands the core what 
   // act. Every step, the angular momentum about the core the points gain is what the core gives up
   // (StepReport::core_angular_impulse_Nms), to the discretisation: sum m r x v at the step's ends is not
   // the sum of the corrections' moments at the places they were made, an O(h v) difference (measured: 19 %
-  // in the first, violent step, 1-4 % after; 5.6 % summed over the 20 steps, mostly the first). The
-  // shell orientation constraint used to report
-  // the moment it would hand an uncrushed shell, a torque of the body on itself: here 9-10 times what
-  // the points gained, with the same sign (repeated impacts: 6 kN m of yaw while driving straight,
-  // 22 kJ created).
+  // in the first, violent step, 1-4 % after; 5.6 % summed over the 20 steps, mostly the first). The shell
+  // orientation constraint used to report the moment it would hand an uncrushed shell, a torque of the
+  // body on itself: here 9-10 times what the points gained, with the same sign (repeated impacts: 6 kN m
+  // of yaw while driving straight, 22 kJ created).
   const VehicleModel car = makeSedan(2000);
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
