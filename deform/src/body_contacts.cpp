@@ -62,7 +62,7 @@ void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
           using T = std::decay_t<decltype(shape)>;
           if constexpr (std::is_same_v<T, HalfSpaceShape>) {
             shape.offset_m += shape.normal.dot(offset);
-          } else if constexpr (std::is_same_v<T, CapsuleShape>) {
+          } else if constexpr (std::is_same_v<T, CapsuleShape> || std::is_same_v<T, CylinderShape>) {
             shape.a_m += offset;
             shape.b_m += offset;
           } else if constexpr (std::is_same_v<T, ConvexSupportShape>) {

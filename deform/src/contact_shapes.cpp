@@ -54,6 +54,56 @@ bool inside(const CapsuleShape& s, const Eigen::Vector3d& x, double margin, Pene
   return fromDistance(x - (s.a_m + t * ab), s.radius_m, margin, out);
 }
 
+/// The cylinder's unit axis, a to b (up for a cylinder of no length).
+Eigen::Vector3d axisOf(const CylinderShape& s) {
+  const Eigen::Vector3d along = s.b_m - s.a_m;
+  const double length = along.norm();
+  return length > 0 ? Eigen::Vector3d(along / length) : Eigen::Vector3d::UnitZ();
+}
+
+/// The cylinder's cross-section swept along the sweep's part across the axis `u`.
+Eigen::Vector3d sweepAcross(const CylinderShape& s, const Eigen::Vector3d& u) {
+  return s.sweep_m - u.dot(s.sweep_m) * u;
+}
+
+bool inside(const CylinderShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
+  const Eigen::Vector3d u = axisOf(s);
+  const double length = (s.b_m - s.a_m).norm();
+  const double t = u.dot(x - s.a_m);                   // along the axis, from a
+  const Eigen::Vector3d across = (x - s.a_m) - t * u;  // from the axis, across it
+  const Eigen::Vector3d sweep = sweepAcross(s, u);
+  const double sweep2 = sweep.squaredNorm();
+  const double on_sweep = sweep2 > 0 ? std::clamp(across.dot(sweep) / sweep2, 0.0, 1.0) : 0.0;
+  const Eigen::Vector3d radial = across - on_sweep * sweep;  // from the swept axis
+  const double distance = radial.norm();
+  Eigen::Vector3d radial_unit;
+  if (distance > 0) {
+    radial_unit = radial / distance;
+  } else {  // on the axis: back against the sweep (toward the car), else any direction across
+    const Eigen::Vector3d fallback = sweep2 > 0 ? Eigen::Vector3d(-sweep) : u.unitOrthogonal();
+    radial_unit = fallback.normalized();
+  }
+  const double radial_excess = distance - s.radius_m;    // > 0 outside the side
+  const double axial_excess = std::max(-t, t - length);  // > 0 beyond an end
+  const Eigen::Vector3d axial_unit = t < 0.5 * length ? Eigen::Vector3d(-u) : u;
+  if (radial_excess <= 0 && axial_excess <= 0) {  // inside: out through the nearer surface
+    if (-radial_excess <= -axial_excess) {
+      out.normal = radial_unit;
+      out.depth_m = -radial_excess;
+    } else {
+      out.normal = axial_unit;
+      out.depth_m = -axial_excess;
+    }
+    return true;
+  }
+  const double r = std::max(radial_excess, 0.0), e = std::max(axial_excess, 0.0);
+  const double gap = std::hypot(r, e);
+  if (!(gap < margin)) return false;
+  out.normal = (r * radial_unit + e * axial_unit).normalized();
+  out.depth_m = -gap;
+  return true;
+}
+
 // libccd glue: the obstacle is object 1, the control point inflated to a ball of radius `margin` (a
 // point when 0) is object 2.
 struct PointObject {
@@ -167,6 +217,11 @@ void checkContactShape(const ContactShape& shape, const char* field_name) {
           requireFinite(s.a_m, field + ".a_m");
           requireFinite(s.b_m, field + ".b_m");
           requireNonNegative(s.radius_m, field + ".radius_m");
+        } else if constexpr (std::is_same_v<T, CylinderShape>) {
+          requireFinite(s.a_m, field + ".a_m");
+          requireFinite(s.b_m, field + ".b_m");
+          requireFinite(s.sweep_m, field + ".sweep_m");
+          requireNonNegative(s.radius_m, field + ".radius_m");
         } else {
           if (!s.support) throw InputError(field + ".support: missing");
           requireFinite(s.centre_m, field + ".centre_m");
@@ -197,6 +252,15 @@ bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, E
   } else if (const auto* capsule = std::get_if<CapsuleShape>(&shape)) {
     out_m = (capsule->a_m.dot(unit) >= capsule->b_m.dot(unit) ? capsule->a_m : capsule->b_m) +
             capsule->radius_m * unit;
+  } else if (const auto* cylinder = std::get_if<CylinderShape>(&shape)) {
+    const Eigen::Vector3d u = axisOf(*cylinder);
+    const Eigen::Vector3d across = unit - u.dot(unit) * u;
+    const double across_length = across.norm();
+    const Eigen::Vector3d sweep = sweepAcross(*cylinder, u);
+    out_m = (u.dot(unit) >= 0 ? cylinder->b_m : cylinder->a_m) +
+            (across_length > 1e-12 ? Eigen::Vector3d(cylinder->radius_m / across_length * across)
+                                   : Eigen::Vector3d::Zero()) +
+            (sweep.dot(unit) > 0 ? sweep : Eigen::Vector3d::Zero());
   } else if (const auto* convex = std::get_if<ConvexSupportShape>(&shape)) {
     out_m = convex->support(convex->user, unit);
   } else {
@@ -215,6 +279,11 @@ bool boundingSphere(const ContactShape& shape, Eigen::Vector3d& centre_m, double
   } else if (const auto* capsule = std::get_if<CapsuleShape>(&shape)) {
     centre_m = 0.5 * (capsule->a_m + capsule->b_m);
     radius_m = 0.5 * (capsule->b_m - capsule->a_m).norm() + capsule->radius_m;
+  } else if (const auto* cylinder = std::get_if<CylinderShape>(&shape)) {
+    const Eigen::Vector3d sweep = sweepAcross(*cylinder, axisOf(*cylinder));
+    centre_m = 0.5 * (cylinder->a_m + cylinder->b_m + sweep);
+    radius_m =
+        std::hypot(0.5 * (cylinder->b_m - cylinder->a_m).norm(), cylinder->radius_m) + 0.5 * sweep.norm();
   } else if (const auto* convex = std::get_if<ConvexSupportShape>(&shape)) {
     centre_m = convex->centre_m;
     radius_m = convex->bounding_radius_m;

@@ -123,7 +123,7 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
     if (inputs.contacts.empty() && inputs.impulses.empty() && !load_changed) {
       report.asleep = true;
       state_.time_s += dt_s;
-      rigidShellLoad(dt_s, report);
+      rigidShellLoad(dt_s, inputs.core_mass_kg, report);
       return report;
     }
     state_.sleeping = false;
@@ -194,12 +194,15 @@ double DeformableBody::carriedElasticEnergy_J() const {
   return energy_J;
 }
 
-void DeformableBody::rigidShellLoad(double dt_s, StepReport& report) {
+void DeformableBody::rigidShellLoad(double dt_s, double core_mass_kg, StepReport& report) {
   // A sleeping shell moves with its core as one rigid body: the spokes hold every point against its
   // inertial load a_i = load - alpha x r_i - omega x (omega x r_i) (v = 0), so the core takes
-  //   impulse = dt (M load - alpha x S - omega x (omega x S)),
-  //   moment  = dt (S x load - I alpha - omega x (I omega)),
-  // with M, S = sum m r and I = sum m (|r|^2 E - r r^T) of the frozen shell about the core.
+  //   impulse = dt (M load' - alpha x S - omega x (omega x S)),
+  //   moment  = dt (S x load' - I alpha - omega x (I omega)),
+  // with M, S = sum m r and I = sum m (|r|^2 E - r r^T) of the frozen shell about the core. A core of
+  // finite mass M_c is carried along by the shell as an awake body's is (the substeps' free core): the
+  // two accelerate together by M load / (M_c + M), which leaves the points load' = M_c / (M_c + M) load
+  // to hold. (A kinematic core: load' = load.)
   if (params_.inertial_scale <= 0) return;
   if (!rigid_moments_.valid) {
     const BodySettings& settings = *settings_;
@@ -216,10 +219,12 @@ void DeformableBody::rigidShellLoad(double dt_s, StepReport& report) {
   }
   const RigidMoments& m = rigid_moments_;
   const double scale = params_.inertial_scale * dt_s;
+  const double carried = std::isfinite(core_mass_kg) ? core_mass_kg / (core_mass_kg + m.mass_kg) : 1.0;
+  const Eigen::Vector3d load = carried * load_mps2_;
   const Eigen::Vector3d& s = m.first_moment_kgm;
   report.core_impulse_Ns +=
-      scale * (m.mass_kg * load_mps2_ - alpha_radps2_.cross(s) - omega_radps_.cross(omega_radps_.cross(s)));
-  report.core_angular_impulse_Nms += scale * (s.cross(load_mps2_) - m.inertia_kgm2 * alpha_radps2_ -
+      scale * (m.mass_kg * load - alpha_radps2_.cross(s) - omega_radps_.cross(omega_radps_.cross(s)));
+  report.core_angular_impulse_Nms += scale * (s.cross(load) - m.inertia_kgm2 * alpha_radps2_ -
                                               omega_radps_.cross(m.inertia_kgm2 * omega_radps_));
 }
 

@@ -44,8 +44,10 @@ void SkinObstacles::add(const vehicle::ObstacleShape& shape, const deform::Aabb&
       contact = deform::BoxShape{shape.centre_m, shape.axes, shape.half_extents_m};
       break;
     case vehicle::ShapeType::Capsule:
-    case vehicle::ShapeType::Cylinder:
       contact = deform::CapsuleShape{shape.a_m, shape.b_m, shape.radius_m};
+      break;
+    case vehicle::ShapeType::Cylinder:  // flat ends: a post's top is not rounded
+      contact = deform::CylinderShape{shape.a_m, shape.b_m, shape.radius_m, Eigen::Vector3d::Zero()};
       break;
     case vehicle::ShapeType::Convex: {
       if (shape.vertices_m.empty()) return;

@@ -155,29 +155,21 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   }
 
   // The chassis's motion over ODE's step (its forces only: the body's reaction of the last step moved the
-  // points with it). Crush: ODE moved the chassis alone, but its forces (tyres, ODE contacts) act on the
-  // whole car, chassis and shell: the car's acceleration is gravity plus M_c / M of the rest, and its
-  // angular acceleration (I_c + I_s)^-1 I_c of ODE's. The shell held against that hands the chassis its
-  // inertia in this step, so the chassis ends with the whole car's motion (the shell's weight included).
-  // (Known: finishCar shares that reaction again, I_c I^-1, so the rotation changes faster than ODE's
-  // torques account for: a car rolled by a side pole at 60 points loses 2.6 kJ no term measures. Holding
-  // the shell against ODE's angular acceleration unscaled closes that, pole_side +8.5 -> +3.9 %, but an
-  // impulsive ODE contact then loads the points with the chassis-only angular acceleration: post_bumps at
-  // 16 substeps created 36 kJ. The chassis's rotation inside deform's substeps is the fix;
-  // docs/CRASH_CALIBRATION.md, "Energy account".) Visual: scaled by inertial_scale.
+  // points with it) is deform's frame: the points feel the inertial load of ODE's acceleration of the
+  // chassis alone, and their reaction shares it with the shell once. In translation deform's core is a
+  // free particle of the chassis's mass that the points pull along (the whole car's acceleration
+  // M_c / M of ODE's comes out of the substeps); in rotation the core does not turn inside deform, so
+  // finishCar shares the moment, I_c (I_c + I_s)^-1. Feeding the whole car's acceleration as well shared
+  // it twice: a braking car's momentum changed 8 % faster than its tyres' impulse (car_to_car's struck
+  // car left 20 % of its impact energy unexplained), and pole_side's sliding sedan gained 2.5 km/h in
+  // its first 10 ms (docs/CRASH_CALIBRATION.md, "Energy account"). Visual: scaled by inertial_scale.
   if (crush || dc.settings.inertial_scale > 0) {
-    const Eigen::Vector3d gravity = world.settings().gravity_mps2;
-    Eigen::Vector3d acceleration = (car.velocity_mps() - dc.previous_velocity_mps) / dt;
-    Eigen::Vector3d angular_acceleration =
-        to_vehicle * ((car.angularVelocity_rad_s() - dc.previous_omega_radps) / dt);
-    if (crush) {
-      acceleration = gravity + (car.chassisMass_kg() / car.mass_kg()) * (acceleration - gravity);
-      angular_acceleration = dc.chassis_share_of_rotation * angular_acceleration;
-    }
+    const Eigen::Vector3d acceleration = (car.velocity_mps() - dc.previous_velocity_mps) / dt;
     inputs.chassis.acceleration_mps2 = to_vehicle * acceleration;
     inputs.chassis.angular_velocity_radps = to_vehicle * car.angularVelocity_rad_s();
-    inputs.chassis.angular_acceleration_radps2 = angular_acceleration;
-    inputs.chassis.gravity_mps2 = to_vehicle * gravity;
+    inputs.chassis.angular_acceleration_radps2 =
+        to_vehicle * ((car.angularVelocity_rad_s() - dc.previous_omega_radps) / dt);
+    inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
   }
 
   dc.plastic_before_step_J = state.plastic_work_J;

@@ -22,30 +22,24 @@ void CrushShapes::clear() {
 
 namespace {
 
-/// A post (cylinder or capsule) as the box around it whose first axis faces along the sweep: its push-out
-/// is exact, to the nearest face. libccd's MPR on the support function pushes a point out along the ray
-/// from the shape's interior point through it, not to the nearest surface; extended 2 m into the ground,
-/// a post's interior point lies a metre underground, so a point a few centimetres inside the post at
-/// bumper height left through the top (measured: a bonnet point thrown 1 m up by a 0.1 m bollard at
-/// 13 km/h). The box has the post's width across the sweep, so its near face is the post's nearest point
-/// for a point straight ahead, and a point beside the axis is pushed sideways or back, never over the top.
-ObstacleShape postBox(const ObstacleShape& post, const Eigen::Vector3d& sweep_m) {
+/// A post (a fixed cylinder or capsule) as deform's cylinder, whose push-out is exact: radially from its
+/// axis, or through an end. Extended into the ground by `down_m`'s part along its axis, and across the axis
+/// by the sweep (away from the car); a capsule's rounded ends become flat ones at its tips. (It was the box
+/// around the post facing the sweep: as the sweep turned with the relative motion, the box turned about the
+/// post, and its corners, 41 % further out than the post, came into the control surface from nowhere.)
+deform::CylinderShape postCylinder(const ObstacleShape& post, const Eigen::Vector3d& sweep_m,
+                                   const Eigen::Vector3d& down_m) {
   const Eigen::Vector3d along = post.b_m - post.a_m;
   const double length = along.norm();
   const Eigen::Vector3d axis = length > 1e-12 ? Eigen::Vector3d(along / length) : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d facing = sweep_m - axis.dot(sweep_m) * axis;
-  if (facing.norm() < 1e-9) facing = Eigen::Vector3d::UnitX() - axis.x() * axis;
-  if (facing.norm() < 1e-9) facing = Eigen::Vector3d::UnitY() - axis.y() * axis;
-  facing.normalize();
-  ObstacleShape box;
-  box.type = ShapeType::Box;
-  box.centre_m = 0.5 * (post.a_m + post.b_m);
-  box.axes.col(0) = facing;
-  box.axes.col(1) = axis.cross(facing);
-  box.axes.col(2) = axis;
-  const double half_length = 0.5 * length + (post.type == ShapeType::Capsule ? post.radius_m : 0.0);
-  box.half_extents_m = {post.radius_m, post.radius_m, half_length};
-  return box;
+  deform::CylinderShape cylinder{post.a_m, post.b_m, post.radius_m, sweep_m};
+  if (post.type == ShapeType::Capsule) {
+    cylinder.a_m -= post.radius_m * axis;
+    cylinder.b_m += post.radius_m * axis;
+  }
+  const double down = axis.dot(down_m);
+  (down > 0 ? cylinder.b_m : cylinder.a_m) += down * axis;
+  return cylinder;
 }
 
 }  // namespace
@@ -53,20 +47,9 @@ ObstacleShape postBox(const ObstacleShape& post, const Eigen::Vector3d& sweep_m)
 void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m,
                       const Eigen::Vector3d& down_m, bool post, bool surface) {
   if (post && (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule)) {
-    // The extended shape is the box around the post (exact push-out); what is left inside is measured
-    // against the post itself.
-    const std::size_t exact_before = exact_.size();
-    add(postBox(shape, sweep_m), sweep_m, down_m, false, surface);
-    exact_.resize(exact_before);
-    auto plain = std::make_unique<SweptShape>();
-    plain->shape = shape;
-    deform::ConvexSupportShape support;
-    support.support = &SweptShape::support;
-    support.user = plain.get();
-    support.centre_m = interiorPoint(shape);
-    support.bounding_radius_m = boundingRadius(shape);
-    exact_.push_back(support);
-    swept_.push_back(std::move(plain));
+    shapes_.push_back(postCylinder(shape, sweep_m, down_m));
+    surface_.push_back(surface);
+    exact_.push_back(postCylinder(shape, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
     return;
   }
   switch (shape.type) {

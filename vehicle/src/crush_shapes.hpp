@@ -30,9 +30,9 @@ class CrushShapes {
   /// Adds `shape` (vehicle frame) extended by `sweep_m` and by `down_m` (into the ground under an obstacle
   /// standing on it, so a point deep in a wall is never pushed out under it); boxes stay exact primitives
   /// (extended along their axes closest to the extensions), the rest become support shapes. A `post`
-  /// (a fixed cylinder or capsule) becomes the box around it facing the sweep (exact push-out, see
-  /// crush_shapes.cpp). A `surface` obstacle (another car's body) is also met between the control points
-  /// (deform's face contacts, StepInputs::surface_contact).
+  /// (a fixed cylinder or capsule) becomes deform's cylinder (exact push-out, see crush_shapes.cpp). A
+  /// `surface` obstacle (another car's body) is also met between the control points (deform's face contacts,
+  /// StepInputs::surface_contact).
   void add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m, const Eigen::Vector3d& down_m,
            bool post = false, bool surface = false);
   const std::vector<deform::ContactShape>& shapes() const { return shapes_; }

@@ -32,6 +32,16 @@ struct CapsuleShape {
   double radius_m = 0;                         ///< [m]
 };
 
+/// A solid cylinder with flat ends around the segment `a_m`-`b_m`, stretched across its axis by `sweep_m`
+/// (the Minkowski sum of the cylinder and the segment [0, sweep_m]; the sweep's part along the axis is
+/// ignored): a post, extended away from the car that meets it. Its push-out is exact: radially from the
+/// swept axis, or out through an end.
+struct CylinderShape {
+  Eigen::Vector3d a_m{0, 0, 0}, b_m{0, 0, 0};  ///< axis ends [m]
+  double radius_m = 0;                         ///< [m]
+  Eigen::Vector3d sweep_m{0, 0, 0};            ///< extension across the axis [m]
+};
+
 /// The point of a convex shape furthest along `direction` [m]; `user` is ConvexSupportShape::user.
 using SupportFunction = Eigen::Vector3d (*)(const void* user, const Eigen::Vector3d& direction);
 
@@ -45,7 +55,8 @@ struct ConvexSupportShape {
 };
 
 /// Any obstacle a control point may not be inside.
-using ContactShape = std::variant<HalfSpaceShape, SphereShape, BoxShape, CapsuleShape, ConvexSupportShape>;
+using ContactShape =
+    std::variant<HalfSpaceShape, SphereShape, BoxShape, CapsuleShape, CylinderShape, ConvexSupportShape>;
 
 /// How to push a point out of an obstacle: move it by depth_m along normal.
 struct Penetration {

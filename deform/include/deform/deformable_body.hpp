@@ -118,9 +118,10 @@ class DeformableBody {
   /// The visual constraint (the deviation cap) after the solve; a held point at its cap stops the core.
   void capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
                     const Eigen::Vector3d& core_start, Eigen::Vector3d& tie_push, StepReport& report);
-  /// Asleep: the core's impulse and moment from holding the rigid shell against its inertial load.
-  /// O(1) per step: the shell's mass moments are taken once when it falls asleep (positions are frozen).
-  void rigidShellLoad(double dt_s, StepReport& report);
+  /// Asleep: the core's impulse and moment from holding the rigid shell against its inertial load, a core
+  /// of finite mass carried along with the shell. O(1) per step: the shell's mass moments are taken once when
+  /// it falls asleep (positions are frozen).
+  void rigidShellLoad(double dt_s, double core_mass_kg, StepReport& report);
 
   /// Mass moments of the frozen shell about the core: mass, first moment and inertia tensor.
   struct RigidMoments {

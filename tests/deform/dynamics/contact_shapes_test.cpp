@@ -4,6 +4,7 @@
 #include <deform/error.hpp>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 using namespace deform;
 
@@ -75,4 +76,41 @@ TEST_CASE("within the contact margin a point outside is reported with a negative
   CHECK(p.depth_m == Approx(-0.006).margin(1e-6));
   CHECK(p.normal.z() == Approx(1.0).margin(1e-6));
   CHECK_FALSE(penetration(cube.shape(), {0.2, 0.1, 1.02}, p, 0.01));
+}
+
+TEST_CASE("a post's swept cylinder: exact push-out, and its support points lie on its surface",
+          "[dynamics]") {
+  // A 0.1 m post from 2 m underground to 1 m up, swept 0.3 m along +x (away from a car at -x).
+  const CylinderShape post{{0, 0, -2}, {0, 0, 1}, 0.1, {0.3, 0, 0.05}};  // the sweep's z is ignored
+  Penetration p;
+  CHECK(penetration(post, {-0.05, 0, 0.5}, p));  // in front of the axis: back toward the car
+  CHECK(p.depth_m == Approx(0.05));
+  CHECK(p.normal.x() == Approx(-1.0));
+  CHECK(penetration(post, {0.2, 0.06, 0.5}, p));  // in the swept flank: out sideways, never through
+  CHECK(p.depth_m == Approx(0.04));
+  CHECK(p.normal.y() == Approx(1.0));
+  CHECK(penetration(post, {0.0, 0.0, 0.97}, p));  // just under the flat top: out through it
+  CHECK(p.depth_m == Approx(0.03));
+  CHECK(p.normal.z() == Approx(1.0));
+  CHECK_FALSE(penetration(post, {-0.12, 0, 0.5}, p));
+  CHECK(penetration(post, {-0.105, 0, 1.004}, p, 0.01));  // beyond the rim, within the margin
+  CHECK(p.depth_m == Approx(-std::hypot(0.005, 0.004)));
+  CHECK(p.normal.x() < 0);
+  CHECK(p.normal.z() > 0);
+  CHECK_FALSE(penetration(post, {-0.105, 0, 1.004}, p, 0.005));
+
+  Eigen::Vector3d centre;
+  double radius = 0;
+  REQUIRE(boundingSphere(post, centre, radius));
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d direction(std::cos(0.7 * k) * std::sin(0.31 * k + 0.2),
+                                    std::sin(0.7 * k) * std::sin(0.31 * k + 0.2), std::cos(0.31 * k + 0.2));
+    Eigen::Vector3d support;
+    REQUIRE(supportPoint(post, direction, support));
+    INFO("direction " << direction.transpose() << ", support " << support.transpose());
+    CHECK((support - centre).norm() <= radius + 1e-12);
+    REQUIRE(penetration(post, support, p, 1e-9));  // on the surface
+    CHECK(std::abs(p.depth_m) < 1e-9);
+    CHECK(direction.dot(support) >= direction.dot(Eigen::Vector3d(-0.1, 0, 1)) - 1e-12);  // a rim point
+  }
 }
