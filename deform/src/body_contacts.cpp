@@ -132,6 +132,12 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
     const double reach =
         std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
     if ((g - centre).norm() > radius + reach) continue;  // broad phase: the spheres do not meet
+    // Where the distance is cheap (the primitives), the face's own: no point of it is within the margin
+    // when its centroid is further than its reach and the margin (a post's bounding sphere, 2 m into the
+    // ground, holds half the car).
+    if (!std::holds_alternative<ConvexSupportShape>(shape) &&
+        !penetration(shape, g, p, reach + params_.contact_margin_m))
+      continue;
     // The obstacle's point deepest into the body across this face (its support point along the inward
     // normal): when it lies behind the face and over it, the obstacle has poked through between the
     // corners, however thin it is (a post narrower than the sample spacing is still met). The samples
