@@ -139,7 +139,13 @@ std::string frameName(int frame) {
 
 RunResult runScene(const RunOptions& options) {
   const auto started = Clock::now();
-  scenes::SceneConfig scene = scenes::loadScene(options.scene, overridesOf(options.sets));
+  std::vector<scenes::Override> overrides = overridesOf(options.sets);
+  if (options.budget_ms) {
+    if (!(*options.budget_ms >= 0))
+      throw deform::InputError("--budget-ms: must be >= 0 (got " + std::to_string(*options.budget_ms) + ")");
+    overrides.push_back(scenes::parseOverride("deformation_budget_ms=" + std::to_string(*options.budget_ms)));
+  }
+  scenes::SceneConfig scene = scenes::loadScene(options.scene, overrides);
   applyFlags(options, scene.outputs);
   if (options.threads) {
     if (*options.threads < 1)
@@ -281,12 +287,23 @@ void registerRunCommand(CLI::App& app) {
   run->add_option("--threads", options->threads,
                   "Threads for the cars' deformation steps (default: the scene's key threads, else the "
                   "machine's cores); the state hash does not depend on it");
+  run->add_option("--budget-ms", options->budget_ms,
+                  "Deformation budget per physics step, every car together [ms]: each car's level of detail "
+                  "is chosen to fit, the first to crash and those near the camera finest (the scene key "
+                  "deformation_budget_ms)");
   run->add_option("--resume", options->resume,
                   "Continue from a state file of this scene and these --set values (--save-state's)")
       ->type_name("FILE");
   run->callback([options] {
     const RunResult result = runScene(*options);
     const nlohmann::json& s = result.summary;
+    if (s.contains("deformation_budget")) {
+      const nlohmann::json& b = s["deformation_budget"];
+      std::printf("deformation budget %.3f ms per step: estimated %.3f ms, measured %.3f ms%s\n",
+                  b["budget_ms"].get<double>(), b["estimated_ms"].get<double>(),
+                  b["measured_ms_per_step"].get<double>(),
+                  b["met"].get<bool>() ? "" : " (not met: every car is at the coarsest level already)");
+    }
     std::printf("%s: %llu steps, %.3f s simulated in %.1f s; state hash %s\n",
                 s["scene"].get<std::string>().c_str(),
                 static_cast<unsigned long long>(s["steps"].get<uint64_t>()), s["time_s"].get<double>(),

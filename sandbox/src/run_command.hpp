@@ -25,6 +25,9 @@ struct RunOptions {
   /// --threads N: threads for the cars' deformation (overrides the scene's key threads); none: the
   /// scene's, else the machine's cores.
   std::optional<int> threads;
+  /// --budget-ms B: the deformation budget per physics step (the scene key deformation_budget_ms, set as
+  /// an override so that a saved state remembers it).
+  std::optional<double> budget_ms;
 };
 
 struct RunResult {

@@ -1,4 +1,5 @@
 // Scene files: strict parsing with key paths, --set overrides, shipped scenes by name.
+#include <scenes/deformation_budget.hpp>
 #include <scenes/scene_file.hpp>
 
 #include <deform/error.hpp>
@@ -23,7 +24,7 @@ using nlohmann::json;
 
 constexpr double kHuge = 1e6;  // bound for positions and sizes [m]
 
-const std::vector<std::string> kPresets = {"fast", "balanced", "accurate"};
+const std::vector<std::string> kPresets = {"fast", "balanced", "accurate", "fine", "finest"};
 
 // "${DEFORM_TEST_MESHES}/x.obj" -> the variable's value; relative paths against the scene's folder.
 std::string resolveMeshPath(const std::string& spec, JsonObject& object, const std::string& key,
@@ -313,20 +314,15 @@ std::string lineColumn(const std::string& text, std::size_t offset) {
 }  // namespace
 
 std::optional<DeformationConfig> deformationPreset(const std::string& name) {
+  // The presets are levels of the budget's table (deformation_budget.cpp), chosen from the measured front
+  // (docs/TRADEOFF.md): the error against the reference is set by the control points; substeps,
+  // iterations and K beyond these buy almost nothing.
+  if (std::find(kPresets.begin(), kPresets.end(), name) == kPresets.end()) return std::nullopt;
+  const DeformationLevel* level = deformationLevel(name);
+  if (!level) return std::nullopt;
   DeformationConfig d;
   d.preset = name;
-  vehicle::DeformationSettings& s = d.settings;  // vehicle's calibrated defaults are "balanced"
-  // Chosen from the measured front (docs/TRADEOFF.md): the error against the reference is set by the
-  // control points; substeps, iterations and K beyond these buy almost nothing.
-  if (name == "fast") {
-    s.k_nearest = 4;
-    s.substeps = 2;
-    s.iterations = 1;
-  } else if (name == "accurate") {
-    s.control_points = 250;
-  } else if (name != "balanced") {
-    return std::nullopt;
-  }
+  applyLevel(*level, d.settings);  // the rest: vehicle's calibrated defaults
   return d;
 }
 
@@ -498,6 +494,8 @@ SceneConfig parseScene(const json& document, const std::string& source, const st
   scene.duration_s = top.number("duration_s", std::nullopt, 1e-3, 1e5);
   scene.physics_hz = top.number("physics_hz", std::nullopt, 15, 20000);
   if (top.has("threads")) scene.threads = static_cast<int>(top.integer("threads", std::nullopt, 1, 1024));
+  if (top.has("deformation_budget_ms"))
+    scene.deformation_budget_ms = top.number("deformation_budget_ms", std::nullopt, 0, 1e6);
   scene.gravity_mps2 = top.number("gravity_mps2", 9.81, 0, 100);
   scene.ground = top.boolean("ground", true);
   scene.ground_friction = top.number("ground_friction", 1.0, 0, 10);

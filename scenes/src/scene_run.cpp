@@ -143,6 +143,10 @@ SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
       withSource(scene_.source, [&] { return std::make_unique<vehicle::Simulation>(world_settings); });
   total_steps_ = static_cast<uint64_t>(std::llround(scene_.duration_s * scene_.physics_hz));
   simulation_->setThreads(scene_.threads.value_or(defaultThreads()));
+  if (scene_.deformation_budget_ms) {
+    budget_plan_ = planDeformationBudget(scene_, *scene_.deformation_budget_ms, physics_substeps_);
+    applyBudget(*budget_plan_, scene_);
+  }
 
   std::map<std::string, std::shared_ptr<const deform::VehicleModel>> models;
   for (std::size_t i = 0; i < scene_.vehicles.size(); ++i) {
@@ -383,6 +387,36 @@ nlohmann::json SceneRun::summary() const {
   out["physics_hz"] = scene_.physics_hz;
   out["physics_substeps"] = physics_substeps_;
   out["threads"] = simulation_->threads();
+  if (budget_plan_) {
+    nlohmann::json cars_budget = nlohmann::json::array();
+    for (std::size_t i = 0; i < budget_plan_->cars.size(); ++i) {
+      const BudgetChoice& c = budget_plan_->cars[i];
+      const vehicle::DeformationSettings& d = scene_.vehicles[i].deformation.settings;
+      cars_budget.push_back(
+          {{"name", scene_.vehicles[i].name},
+           {"level", c.level},
+           {"control_points", d.control_points},
+           {"k_nearest", d.k_nearest},
+           {"substeps", d.substeps},
+           {"iterations", d.iterations},
+           {"estimated_ms", c.estimated_ms},
+           {"meets", c.meets == Meets::Car        ? "car"
+                     : c.meets == Meets::Obstacle ? "obstacle"
+                                                  : "nothing"},
+           {"priority", c.priority},
+           {"first_contact_s",
+            std::isfinite(c.first_contact_s) ? nlohmann::json(c.first_contact_s) : nlohmann::json()},
+           {"camera_distance_m", c.camera_distance_m}});
+    }
+    // What the bodies' steps took per physics step in this run, all cars together (asleep ones cost
+    // next to nothing, so this is at most the estimate's every-body-awake figure plus the machine's noise).
+    const double measured = steps() > 0 ? times_.deform_ms / static_cast<double>(steps()) : 0.0;
+    out["deformation_budget"] = {{"budget_ms", budget_plan_->budget_ms},
+                                 {"estimated_ms", budget_plan_->estimated_ms},
+                                 {"met", budget_plan_->met},
+                                 {"measured_ms_per_step", measured},
+                                 {"cars", cars_budget}};
+  }
   // Every stage, and physics (tyres + collide + solve) as a subtotal for older readers.
   out["timing_ms"] = {
       {"setup", times_.setup_ms},     {"tyres", times_.tyres_ms},       {"collide", times_.collide_ms},

@@ -135,6 +135,9 @@ struct SceneConfig {
   /// Threads the cars' deformation steps run on (scene key threads, sandbox run --threads); none: the
   /// machine's cores. The state does not depend on it.
   std::optional<int> threads;
+  /// Deformation budget per physics step, every car together (scene key deformation_budget_ms, sandbox
+  /// run --budget-ms): each car's level of detail is chosen for it (deformation_budget.hpp) [ms].
+  std::optional<double> deformation_budget_ms;
   std::vector<VehicleConfig> vehicles;
   std::vector<ObstacleConfig> obstacles;
   CameraConfig camera;

@@ -2,6 +2,7 @@
 // Playing a scene, without any rendering: the simulation (World plus deformable cars) built from the
 // scene, stepped at the fixed physics rate with each car's drive script, and what a run reports: the
 // crash metrics of every car, the state hash, stage timings and one timeline row per frame.
+#include <scenes/deformation_budget.hpp>
 #include <scenes/drive_script.hpp>
 #include <scenes/scene.hpp>
 
@@ -78,6 +79,8 @@ class SceneRun {
   /// Internal simulation steps per scene step: 1 at 120 Hz and above, else the fewest that make each
   /// internal step at most 1/kMinInternalRate_hz s.
   int physicsSubsteps() const { return physics_substeps_; }
+  /// The deformation budget's choice of levels (scene key deformation_budget_ms), if the scene has one.
+  const std::optional<BudgetPlan>& budgetPlan() const { return budget_plan_; }
   bool finished() const { return steps() >= total_steps_; }
 
   /// One physics step with every car's drive inputs (does nothing once finished).
@@ -156,6 +159,7 @@ class SceneRun {
   std::vector<vehicle::ObstacleId> obstacle_ids_;
   uint64_t total_steps_ = 0;
   int physics_substeps_ = 1;
+  std::optional<BudgetPlan> budget_plan_;
   double frame_time_s_ = 0;  ///< sum of advance()'s frames [s]
   StageTimes times_;
 };

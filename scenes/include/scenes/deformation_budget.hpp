@@ -1,0 +1,73 @@
+#pragma once
+// Levels of detail of a car's deformation, with their measured cost, and a deformation budget shared by
+// every car of a scene (scene key deformation_budget_ms, sandbox run --budget-ms): each car is modelled
+// only as finely as the budget allows, the cars the script crashes first and those near the camera first.
+#include <scenes/scene.hpp>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace scenes {
+
+/// One level of detail: the knobs that set a car's deformation cost, and that cost as measured.
+struct DeformationLevel {
+  std::string name;
+  std::size_t control_points = 60;
+  int k_nearest = 8;
+  int substeps = 4;
+  int iterations = 2;
+  /// deform's wall time per physics step of one car whose body is awake, measured on the project's 2-core
+  /// machine at 500 Hz on one thread [ms]: driving with nothing near it, against an obstacle (the 56 km/h
+  /// wall crash) and against another car's body (car_to_car, the dearest contact: the other car's hull is
+  /// met through libccd's MPR).
+  double driving_ms = 0;
+  double obstacle_ms = 0;
+  double car_ms = 0;
+};
+
+/// What a car is expected to meet first, which sets its cost in the budget.
+enum class Meets : uint8_t { Nothing, Obstacle, Car };
+
+/// The levels, coarsest first. The presets `fast`, `balanced` and `accurate` are three of them: this
+/// table is the one place their knobs are set.
+const std::vector<DeformationLevel>& deformationLevels();
+
+/// The level called `name`, or nullptr.
+const DeformationLevel* deformationLevel(const std::string& name);
+
+/// Sets `level`'s knobs (control points, K, substeps, iterations) on `settings`.
+void applyLevel(const DeformationLevel& level, vehicle::DeformationSettings& settings);
+
+/// What the budget chose for one car.
+struct BudgetChoice {
+  std::string level;
+  double estimated_ms = 0;  ///< the level's cost per physics step, for what the car meets [ms]
+  Meets meets = Meets::Nothing;
+  /// When the car would first reach another car or an obstacle moving as it starts (straight on, at its
+  /// start speed) [s]; infinity when it would not.
+  double first_contact_s = std::numeric_limits<double>::infinity();
+  double camera_distance_m = 0;  ///< from the camera's eye (0 for the car a chase camera follows) [m]
+  std::size_t priority = 0;      ///< 0 is served first
+};
+
+/// A budget's outcome: the level of every car and what they cost together.
+struct BudgetPlan {
+  double budget_ms = 0;            ///< per physics step, every car together [ms]
+  double estimated_ms = 0;         ///< the chosen levels' cost per physics step, every body awake [ms]
+  bool met = true;                 ///< false: the coarsest level for every car already costs more
+  std::vector<BudgetChoice> cars;  ///< in the scene's order
+};
+
+/// Chooses a level per car so that their cost per physics step (`internal_steps` world steps each),
+/// every body awake and each car charged for what it would meet first (moving straight on at its start
+/// velocity: another car, an obstacle, or nothing), stays within `budget_ms`. Every car starts at the
+/// coarsest level; then, round after round in priority order (the car the scene's start would crash first,
+/// then the one nearest the camera), each goes one level finer while the budget has room. When even the
+/// coarsest levels exceed it, every car keeps the coarsest and `met` is false.
+BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps = 1);
+
+/// Sets every car's chosen level on `scene`.
+void applyBudget(const BudgetPlan& plan, SceneConfig& scene);
+
+}  // namespace scenes

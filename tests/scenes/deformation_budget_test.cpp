@@ -1,0 +1,137 @@
+// The deformation budget (scene key deformation_budget_ms): more cars get coarser levels, the chosen
+// levels fit the budget, the cars that crash first and those near the camera are served first, an
+// impossible budget says so, and a negative one is refused naming the key.
+#include <catch2/catch.hpp>
+
+#include <scenes/deformation_budget.hpp>
+#include <scenes/scene_file.hpp>
+
+#include <deform/error.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+using nlohmann::json;
+
+namespace {
+
+/// `cars` sedans in a row 10 m apart driving along +x at 30 km/h, with a wall ahead of the first only
+/// when `wall` is set; the camera stands by the last car.
+scenes::SceneConfig row(std::size_t cars, bool wall) {
+  json scene = {
+      {"duration_s", 1.0}, {"physics_hz", 500}, {"vehicles", json::array()}, {"obstacles", json::array()}};
+  for (std::size_t i = 0; i < cars; ++i)
+    scene["vehicles"].push_back(
+        {{"mesh", "builtin:sedan?vertices=2000"},
+         {"mass_kg", 1500},
+         {"coupling", "crush"},
+         {"start", {{"position_m", {0.0, 10.0 * static_cast<double>(i)}}, {"speed_kmh", 30}}}});
+  if (wall)
+    scene["obstacles"].push_back({{"type", "wall"}, {"position_m", {8, 0}}, {"size_m", {0.5, 4, 1.5}}});
+  scene["camera"] = {{"mode", "fixed"}, {"eye_m", {0, 10.0 * static_cast<double>(cars) + 5, 3}}};
+  return scenes::parseScene(scene, "row.json");
+}
+
+std::size_t levelIndex(const std::string& name) {
+  const auto& levels = scenes::deformationLevels();
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    if (levels[i].name == name) return i;
+  FAIL("no level " << name);
+  return 0;
+}
+
+double meanLevel(const scenes::BudgetPlan& plan) {
+  double sum = 0;
+  for (const scenes::BudgetChoice& c : plan.cars) sum += static_cast<double>(levelIndex(c.level));
+  return sum / static_cast<double>(plan.cars.size());
+}
+
+}  // namespace
+
+TEST_CASE("Budget: the levels cost more the finer they are, and the presets are three of them",
+          "[scenes][budget]") {
+  const auto& levels = scenes::deformationLevels();
+  for (std::size_t i = 1; i < levels.size(); ++i) {
+    CHECK(levels[i].driving_ms > levels[i - 1].driving_ms);
+    CHECK(levels[i].obstacle_ms > levels[i - 1].obstacle_ms);
+    CHECK(levels[i].car_ms > levels[i - 1].car_ms);
+  }
+  for (const char* name : {"fast", "balanced", "accurate"}) {
+    const auto preset = scenes::deformationPreset(name);
+    REQUIRE(preset);
+    const scenes::DeformationLevel* level = scenes::deformationLevel(name);
+    REQUIRE(level);
+    CHECK(preset->settings.control_points == level->control_points);
+    CHECK(preset->settings.substeps == level->substeps);
+    CHECK(preset->settings.iterations == level->iterations);
+  }
+}
+
+TEST_CASE("Budget: more cars get coarser levels, within the budget", "[scenes][budget]") {
+  const double budget_ms = 1.0;
+  double previous = 1e9;
+  for (const std::size_t cars : {1, 4, 16, 64}) {
+    const scenes::BudgetPlan plan = scenes::planDeformationBudget(row(cars, false), budget_ms);
+    INFO(cars << " cars");
+    REQUIRE(plan.cars.size() == cars);
+    REQUIRE(plan.met);
+    CHECK(plan.estimated_ms <= budget_ms + 1e-12);
+    double sum = 0;
+    for (const scenes::BudgetChoice& c : plan.cars) sum += c.estimated_ms;
+    CHECK(sum == Approx(plan.estimated_ms));
+    const double mean = meanLevel(plan);
+    CHECK(mean <= previous);
+    previous = mean;
+  }
+  CHECK(meanLevel(scenes::planDeformationBudget(row(1, false), budget_ms)) >
+        meanLevel(scenes::planDeformationBudget(row(64, false), budget_ms)));
+}
+
+TEST_CASE("Budget: the car that will crash first and the one near the camera come first",
+          "[scenes][budget]") {
+  const scenes::SceneConfig scene = row(6, true);  // only the first car has the wall ahead
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(scene, 0.6);
+  REQUIRE(plan.met);
+  CHECK(plan.cars[0].meets == scenes::Meets::Obstacle);
+  CHECK(std::isfinite(plan.cars[0].first_contact_s));
+  CHECK(plan.cars[0].priority == 0);
+  CHECK(plan.cars[5].priority == 1);  // the others by their distance to the camera, by the last car
+  CHECK(plan.cars[1].priority == 5);
+  for (std::size_t i = 1; i < 6; ++i) {
+    CHECK(plan.cars[i].meets == scenes::Meets::Nothing);
+    CHECK(levelIndex(plan.cars[0].level) >= levelIndex(plan.cars[i].level));
+  }
+  CHECK(levelIndex(plan.cars[5].level) >= levelIndex(plan.cars[1].level));
+}
+
+TEST_CASE("Budget: one that even the coarsest levels exceed says so and keeps them", "[scenes][budget]") {
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(row(10, false), 0.01);
+  CHECK_FALSE(plan.met);
+  for (const scenes::BudgetChoice& c : plan.cars) CHECK(c.level == scenes::deformationLevels().front().name);
+  CHECK(plan.estimated_ms > 0.01);
+}
+
+TEST_CASE("Budget: the scene key is applied to every car, and a negative budget is refused",
+          "[scenes][budget]") {
+  json scene = {{"duration_s", 1.0},
+                {"physics_hz", 500},
+                {"deformation_budget_ms", -1},
+                {"vehicle",
+                 {{"mesh", "builtin:sedan?vertices=2000"},
+                  {"mass_kg", 1500},
+                  {"coupling", "crush"},
+                  {"start", {{"speed_kmh", 20}}}}}};
+  CHECK_THROWS_WITH(scenes::parseScene(scene, "budget.json"),
+                    Catch::Contains("budget.json") && Catch::Contains("deformation_budget_ms"));
+  scene["deformation_budget_ms"] = 0.2;
+  scenes::SceneConfig config = scenes::parseScene(scene, "budget.json");
+  REQUIRE(config.deformation_budget_ms);
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(config, *config.deformation_budget_ms);
+  scenes::applyBudget(plan, config);
+  const scenes::DeformationLevel* level = scenes::deformationLevel(plan.cars[0].level);
+  REQUIRE(level);
+  CHECK(config.vehicles[0].deformation.settings.control_points == level->control_points);
+  CHECK(config.vehicles[0].deformation.preset == level->name);
+}
