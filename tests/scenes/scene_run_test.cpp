@@ -204,3 +204,27 @@ TEST_CASE("Crushed volume converges in N, and the energy per crushed volume is t
     CHECK(std::abs(volume_m3[0] / volume_m3[1] - 1) < 0.1);
   }
 }
+
+TEST_CASE("traffic: 30 and more cars at a junction, several dented at once, within the budget", "[run]") {
+  scenes::SceneRun run(scenes::loadScene("traffic"));
+  REQUIRE(run.carCount() >= 30);
+  REQUIRE(run.budgetPlan());
+  CHECK(run.budgetPlan()->met);
+  CHECK(run.budgetPlan()->estimated_ms <= run.budgetPlan()->budget_ms);
+  run.runToEnd();
+  CHECK_FALSE(run.diverged());
+  const nlohmann::json summary = run.summary();
+  int dented = 0, impacted = 0;
+  for (const nlohmann::json& car : summary["cars"]) {
+    CHECK_FALSE(car["tunnelled"].get<bool>());
+    impacted += car["impacted"].get<bool>();
+    dented += car["max_deviation_m"].get<double>() > 0.1;
+  }
+  std::printf(
+      "[figure] traffic: %zu cars, %d impacted, %d dented by more than 0.1 m, budget %.2f ms, "
+      "estimated %.2f ms, measured %.2f ms per step\n",
+      run.carCount(), impacted, dented, run.budgetPlan()->budget_ms, run.budgetPlan()->estimated_ms,
+      summary["deformation_budget"]["measured_ms_per_step"].get<double>());
+  CHECK(dented >= 4);
+  CHECK(impacted <= 10);  // a few collisions, not a pile-up of every car
+}

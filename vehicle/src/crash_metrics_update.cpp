@@ -6,6 +6,29 @@
 #include <cmath>
 
 namespace vehicle {
+namespace {
+
+/// Whether the segment `from`-`to` passes through the inside of a box or an upright cylinder or capsule
+/// (2 cm samples; the segment is a car's centre of mass over a crash, up to a few metres).
+bool segmentMeets(const ObstacleShape& shape, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const double length = (to - from).norm();
+  const int samples = std::clamp(static_cast<int>(std::ceil(length / 0.02)), 1, 5000);
+  for (int k = 0; k <= samples; ++k) {
+    const Eigen::Vector3d p = from + (to - from) * (static_cast<double>(k) / samples);
+    if (shape.type == ShapeType::Box) {
+      const Eigen::Vector3d local = shape.axes.transpose() * (p - shape.centre_m);
+      if ((local.cwiseAbs().array() < shape.half_extents_m.array()).all()) return true;
+    } else if (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule) {
+      const Eigen::Vector3d ab = shape.b_m - shape.a_m;
+      const double t = ab.squaredNorm() > 0 ? (p - shape.a_m).dot(ab) / ab.squaredNorm() : 0.0;
+      if (t < 0 || t > 1) continue;
+      if ((p - shape.a_m - t * ab).norm() < shape.radius_m) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
 
 void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before,
                                      double kinetic_before) {
@@ -89,7 +112,14 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   const double separation =
       dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(dc.impact_other)));
   mt.max_dynamic_crush_m = std::max(mt.max_dynamic_crush_m, dc.impact_separation_m - separation);
-  if (separation < 0) mt.tunnelled = true;
+  // Tunnelling: the centre of mass went through the wall or post it hit first, on its way from where it
+  // was at impact (a car knocked past another car, driven on over a tree it felled, or scraping along a
+  // barrier past its end has gone beside it, not through it).
+  const bool immovable = dc.impact_other.kind == EntityRef::Kind::Obstacle &&
+                         (world.obstacleKind(dc.impact_other.index) == ObstacleKind::Wall ||
+                          world.obstacleKind(dc.impact_other.index) == ObstacleKind::Post);
+  if (separation < 0 && immovable && !mt.tunnelled)
+    mt.tunnelled = segmentMeets(worldShapeOf(dc.impact_other), dc.impact_com_m, car.bodyPose().position_m);
 
   EnergyTerms& e = mt.energy;
   e.crush_work_J += dc.step_crush_work_J;

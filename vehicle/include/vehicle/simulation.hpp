@@ -178,7 +178,7 @@ struct CrashMetrics {
   double max_deviation_m = 0;  ///< largest |c_i - c_i0| ever [m]
   double max_penetration_m =
       0;                   ///< largest depth of a control point left inside an obstacle after a step [m]
-  bool tunnelled = false;  ///< the centre of mass crossed to the far side of something it hit
+  bool tunnelled = false;  ///< the centre of mass crossed to the far side of the wall or post it hit first
   bool diverged = false;   ///< a non-finite value or one beyond 1e10 in the car or its body
   /// When it first diverged [s] and what: "control point N" or "chassis" (empty while it has not).
   double diverged_at_s = 0;
