@@ -20,9 +20,15 @@ void registerBenchCarsCommand(CLI::App& bench) {
       "--skip-when-idle", options->skip_when_idle,
       "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle)");
   cmd->add_option("--duration", options->duration_s, "Simulated seconds per run")->capture_default_str();
+  cmd->add_option(
+      "--budget-ms", options->budget_ms,
+      "Deformation budget per physics step, every car together (the scenes' deformation_budget_ms): "
+      "a level per car, and its estimate and measured time in the report");
   cmd->callback([options, quick] {
     if (!(options->duration_s > 0 && options->duration_s <= 1e4))
       throw deform::InputError("--duration: must be in (0, 10000] s");
+    if (options->budget_ms && !(*options->budget_ms >= 0))
+      throw deform::InputError("--budget-ms: must be >= 0");
     CarsBenchOptions run = *options;
     if (*quick) {
       run.cars = {1, 10, 50};

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <map>
 
 namespace sandbox {
 
@@ -43,6 +44,7 @@ std::vector<CarsBenchRow> runCarsBench(const CarsBenchOptions& options) {
     for (int threads : options.threads) {
       scenes::SceneConfig scene = scenes::parseSceneText(text, "bench_cars_" + std::to_string(cars), {}, ".");
       scene.threads = threads;
+      scene.deformation_budget_ms = options.budget_ms;
       const auto start = Clock::now();
       scenes::SceneRun run(scene);
       const auto stepping = Clock::now();
@@ -62,6 +64,14 @@ std::vector<CarsBenchRow> runCarsBench(const CarsBenchOptions& options) {
       row.coupling_ms = t.coupling_ms * per_s;
       row.metrics_ms = t.metrics_ms * per_s;
       row.state_hash = scenes::hashHex(run.stateHash());
+      if (run.budgetPlan()) {
+        row.budget_estimated_ms = run.budgetPlan()->estimated_ms;
+        row.budget_measured_ms = run.steps() > 0 ? t.deform_ms / static_cast<double>(run.steps()) : 0.0;
+        std::map<std::string, int> count;
+        for (const scenes::BudgetChoice& c : run.budgetPlan()->cars) ++count[c.level];
+        for (const auto& [level, n] : count)
+          row.levels += (row.levels.empty() ? "" : ", ") + std::to_string(n) + " " + level;
+      }
       std::printf(
           "%4zu cars, %d thread%s: set-up %7.1f ms, %7.1f ms per simulated s (%.1fx real time), hash %s\n",
           cars, threads, threads == 1 ? " " : "s", row.setup_ms, row.step_ms, row.realtime_factor(),

@@ -4,6 +4,7 @@
 // second split by stage, how much faster than real time, and whether the state hash is the same on every
 // thread count.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct CarsBenchOptions {
   double physics_hz = 60.0;  ///< [Hz]
   std::string out_dir = "out/bench_cars";
   bool skip_when_idle = false;  ///< the cars' vehicle.deformation.skip_when_idle
+  /// --budget-ms: the scenes' deformation_budget_ms (a level per car, scenes/deformation_budget.hpp).
+  std::optional<double> budget_ms;
 };
 
 struct CarsBenchRow {
@@ -27,6 +30,10 @@ struct CarsBenchRow {
   double step_ms = 0;  ///< wall time of the stepping per simulated second [ms/s]
   double realtime_factor() const { return step_ms > 0 ? 1000.0 / step_ms : 0; }  ///< x real time
   std::string state_hash;
+  /// With a budget: the plan's estimate and deform's measured time per physics step, every car together
+  /// [ms], and the levels chosen (e.g. "100 fast").
+  double budget_estimated_ms = 0, budget_measured_ms = 0;
+  std::string levels;
 };
 
 /// The scene it runs: `cars` sedans in rows of ten lanes 4 m apart, 15 m between rows (JSON text).

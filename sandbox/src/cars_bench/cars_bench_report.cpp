@@ -82,7 +82,7 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
   std::filesystem::create_directories(dir);
   CsvTable csv({"cars", "threads", "setup_ms", "tyres_ms_per_s", "collide_ms_per_s", "solve_ms_per_s",
                 "deform_ms_per_s", "coupling_ms_per_s", "metrics_ms_per_s", "step_ms_per_s", "x_real_time",
-                "state_hash"});
+                "state_hash", "budget_ms", "budget_estimated_ms", "deform_ms_per_step", "levels"});
   for (const CarsBenchRow& r : rows) {
     std::vector<std::string> cells = {std::to_string(r.cars), std::to_string(r.threads),
                                       CsvTable::number(r.setup_ms)};
@@ -90,6 +90,10 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
     cells.push_back(CsvTable::number(r.step_ms));
     cells.push_back(CsvTable::number(r.realtime_factor()));
     cells.push_back(r.state_hash);
+    cells.push_back(options.budget_ms ? CsvTable::number(*options.budget_ms) : "");
+    cells.push_back(options.budget_ms ? CsvTable::number(r.budget_estimated_ms) : "");
+    cells.push_back(options.budget_ms ? CsvTable::number(r.budget_measured_ms) : "");
+    cells.push_back(r.levels);
     csv.addRow(cells);
   }
   scenes::writeFileAtomically(dir + "/cars.csv", csv.text());
@@ -109,6 +113,18 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
     for (const auto& [name, ms] : stages(r)) md << " | " << CsvTable::fixed(ms, 1);
     md << " | " << CsvTable::fixed(r.step_ms, 0) << " | " << CsvTable::fixed(r.realtime_factor(), 1) << " | "
        << (sameHash(rows, r.cars) ? "yes" : "**no**") << " |\n";
+  }
+  if (options.budget_ms) {
+    md << "\nDeformation budget " << CsvTable::fixed(*options.budget_ms, 3)
+       << " ms per physics step (`--budget-ms`): the plan's estimate (every body awake) and deform's "
+          "measured "
+          "time per physics step, every car together.\n\n"
+       << "| cars | threads | levels | estimated ms | measured ms | measured / budget |\n"
+       << "|---:|---:|---|---:|---:|---:|\n";
+    for (const CarsBenchRow& r : rows)
+      md << "| " << r.cars << " | " << r.threads << " | " << r.levels << " | "
+         << CsvTable::fixed(r.budget_estimated_ms, 3) << " | " << CsvTable::fixed(r.budget_measured_ms, 3)
+         << " | " << CsvTable::fixed(r.budget_measured_ms / *options.budget_ms, 2) << " |\n";
   }
   scenes::writeFileAtomically(dir + "/cars.md", md.str());
   std::printf("wrote %s/cars.csv, %s/cars.md\n", dir.c_str(), dir.c_str());

@@ -44,8 +44,9 @@ struct BudgetChoice {
   std::string level;
   double estimated_ms = 0;  ///< the level's cost per physics step, for what the car meets [ms]
   Meets meets = Meets::Nothing;
-  /// When the car would first reach another car or an obstacle moving as it starts (straight on, at its
-  /// start speed) [s]; infinity when it would not.
+  /// When the car would first touch another car or an obstacle, every car moving straight on at its start
+  /// velocity (a capsule of the sedan's size), looked ahead over the scene's duration up to 30 s [s];
+  /// infinity when it would not.
   double first_contact_s = std::numeric_limits<double>::infinity();
   double camera_distance_m = 0;  ///< from the camera's eye (0 for the car a chase camera follows) [m]
   std::size_t priority = 0;      ///< 0 is served first
