@@ -58,6 +58,7 @@ class StateReader {
   StateReader(std::span<const uint8_t> data, std::string what) : data_(data), what_(std::move(what)) {}
 
   void raw(void* out, std::size_t size) {
+    if (size == 0) return;  // an empty vector's data() may be null, which memcpy may not be given
     need(size);
     std::memcpy(out, data_.data() + at_, size);
     at_ += size;
