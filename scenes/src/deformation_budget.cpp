@@ -86,8 +86,8 @@ std::pair<double, Meets> firstContact(const SceneConfig& scene, std::size_t i, d
     }
   }
   for (const ObstacleConfig& o : scene.obstacles) {
-    if ((o.position_m.head<2>() - p).norm() - kCarHalfAxis_m - kCarHalfWidth_m - 10.0 > u.norm() * horizon_s)
-      continue;
+    // Further from the obstacle than the car can travel over the horizon: never.
+    if (toObstacle(o, p) - kCarHalfAxis_m - kCarHalfWidth_m > u.norm() * horizon_s) continue;
     for (double t = 0; t <= std::min(horizon_s, first.first); t += kSample_s) {
       const Eigen::Vector2d c = p + t * u;
       const double d = std::min({toObstacle(o, c), toObstacle(o, c + h), toObstacle(o, c - h),

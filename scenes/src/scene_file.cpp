@@ -24,7 +24,12 @@ using nlohmann::json;
 
 constexpr double kHuge = 1e6;  // bound for positions and sizes [m]
 
-const std::vector<std::string> kPresets = {"fast", "balanced", "accurate", "fine", "finest"};
+// The presets are the budget's levels (deformation_budget.cpp), by name.
+std::vector<std::string> presetNames() {
+  std::vector<std::string> names;
+  for (const DeformationLevel& level : deformationLevels()) names.push_back(level.name);
+  return names;
+}
 
 // "${DEFORM_TEST_MESHES}/x.obj" -> the variable's value; relative paths against the scene's folder.
 std::string resolveMeshPath(const std::string& spec, JsonObject& object, const std::string& key,
@@ -100,7 +105,7 @@ void parseRegions(JsonObject& regions, std::vector<vehicle::RegionMaterial>& map
 DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling) {
   DeformationConfig d = *deformationPreset("balanced");
   if (object) {
-    d = *deformationPreset(object->choice("preset", std::string("balanced"), kPresets));
+    d = *deformationPreset(object->choice("preset", std::string("balanced"), presetNames()));
     vehicle::DeformationSettings& s = d.settings;
     s.control_points = static_cast<std::size_t>(
         object->integer("control_points", static_cast<long long>(s.control_points), 4, 5000));
@@ -317,7 +322,6 @@ std::optional<DeformationConfig> deformationPreset(const std::string& name) {
   // The presets are levels of the budget's table (deformation_budget.cpp), chosen from the measured front
   // (docs/TRADEOFF.md): the error against the reference is set by the control points; substeps,
   // iterations and K beyond these buy almost nothing.
-  if (std::find(kPresets.begin(), kPresets.end(), name) == kPresets.end()) return std::nullopt;
   const DeformationLevel* level = deformationLevel(name);
   if (!level) return std::nullopt;
   DeformationConfig d;

@@ -410,7 +410,8 @@ nlohmann::json SceneRun::summary() const {
     }
     // What the bodies' steps took per physics step in this run, all cars together (asleep ones cost
     // next to nothing, so this is at most the estimate's every-body-awake figure plus the machine's noise).
-    const double measured = steps() > 0 ? times_.deform_ms / static_cast<double>(steps()) : 0.0;
+    const uint64_t own_steps = steps() - steps_at_start_;  // like timing_ms, this run's own
+    const double measured = own_steps > 0 ? times_.deform_ms / static_cast<double>(own_steps) : 0.0;
     out["deformation_budget"] = {{"budget_ms", budget_plan_->budget_ms},
                                  {"estimated_ms", budget_plan_->estimated_ms},
                                  {"met", budget_plan_->met},

@@ -107,6 +107,7 @@ void SceneRun::restoreState(std::span<const uint8_t> bytes, const std::string& n
   s.expect(s.done(), "bytes after the state");
   for (std::size_t i = 0; i < cars_.size(); ++i) cars_[i].driver.controller().setIntegral_m(integrals[i]);
   if (steps() != saved_steps || time_s() != saved_time_s) refuse("corrupted (step counter or time disagree)");
+  steps_at_start_ = saved_steps;
 }
 
 void SceneRun::restoreState(const std::string& path) {

@@ -61,8 +61,8 @@ struct DeformableCar {
   int quiet_steps = 0;                             ///< steps without a control point in contact
   Eigen::Vector3d previous_velocity_mps{0, 0, 0};  ///< chassis, after the body's reaction last step (world)
   Eigen::Vector3d previous_omega_radps{0, 0, 0};   ///< the same, angular (world)
-  /// Crush: (I_chassis + I_shell)^-1 I_chassis, the whole car's angular acceleration per ODE's (chassis
-  /// axes) [-].
+  /// Crush: (I_chassis + I_shell)^-1 I_chassis (chassis axes) [-]; its transpose is the chassis's share of
+  /// a moment the body hands the core (finishCar), the shell turning with it taking the rest.
   Eigen::Matrix3d chassis_share_of_rotation = Eigen::Matrix3d::Identity();
 
   // Metrics.

@@ -162,7 +162,8 @@ class SceneRun {
   uint64_t total_steps_ = 0;
   int physics_substeps_ = 1;
   std::optional<BudgetPlan> budget_plan_;
-  double frame_time_s_ = 0;  ///< sum of advance()'s frames [s]
+  uint64_t steps_at_start_ = 0;  ///< the step counter when this run began (a resumed run's saved one)
+  double frame_time_s_ = 0;      ///< sum of advance()'s frames [s]
   StageTimes times_;
 };
 

@@ -4,7 +4,9 @@
 #include <deform/error.hpp>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace deform;
 
@@ -102,6 +104,14 @@ TEST_CASE("a post's swept cylinder: exact push-out, and its support points lie o
   Eigen::Vector3d centre;
   double radius = 0;
   REQUIRE(boundingSphere(post, centre, radius));
+  // The swept cylinder's outline: both rims, at the post and at the sweep's end (its part across the axis).
+  std::vector<Eigen::Vector3d> outline;
+  for (int k = 0; k < 64; ++k)
+    for (const double z : {-2.0, 1.0})
+      for (const double sweep_x : {0.0, 0.3}) {
+        const double angle = 2 * M_PI * k / 64;
+        outline.emplace_back(sweep_x + 0.1 * std::cos(angle), 0.1 * std::sin(angle), z);
+      }
   for (int k = 0; k < 200; ++k) {
     const Eigen::Vector3d direction(std::cos(0.7 * k) * std::sin(0.31 * k + 0.2),
                                     std::sin(0.7 * k) * std::sin(0.31 * k + 0.2), std::cos(0.31 * k + 0.2));
@@ -111,6 +121,8 @@ TEST_CASE("a post's swept cylinder: exact push-out, and its support points lie o
     CHECK((support - centre).norm() <= radius + 1e-12);
     REQUIRE(penetration(post, support, p, 1e-9));  // on the surface
     CHECK(std::abs(p.depth_m) < 1e-9);
-    CHECK(direction.dot(support) >= direction.dot(Eigen::Vector3d(-0.1, 0, 1)) - 1e-12);  // a rim point
+    double furthest = -1e300;  // no point of the outline lies further along the direction
+    for (const Eigen::Vector3d& q : outline) furthest = std::max(furthest, direction.dot(q));
+    CHECK(direction.dot(support) >= furthest - 1e-12);
   }
 }
