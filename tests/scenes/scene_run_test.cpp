@@ -152,16 +152,13 @@ TEST_CASE("Energy balance: the side pole closes, and a car struck by another cou
     const nlohmann::json& e = car["energy"];
     return e["balance_error_J"].get<double>() / e["kinetic_initial_J"].get<double>();
   };
-  // pole_side as shipped (300 points): +6.1 % unexplained, a loss. The target is 5 %; what is missing is
-  // the shell's reaction to the car's angular acceleration, shared twice (the car is thrown into a roll;
-  // docs/CRASH_CALIBRATION.md, "Energy account"). At 2000 points the face contacts created 5.8 kJ before
-  // they had a margin (-7.4 %), +1.8 % since.
+  // pole_side as shipped (300 points): +2.0 % unexplained, a loss (+6.1 % while the shell's inertia was
+  // shared twice; docs/CRASH_CALIBRATION.md, "Energy account"). At 2000 points the face contacts created
+  // 5.8 kJ before they had a margin (-7.4 %).
   const nlohmann::json pole = cars("pole_side", {})[0];
   INFO("pole_side: " << pole["energy"].dump());
   CHECK(fraction(pole) > -0.02);  // not created
-  CHECK(fraction(pole) < 0.08);
-  if (fraction(pole) > 0.05)
-    WARN("pole_side leaves " << 100 * fraction(pole) << " % unexplained: target 5 %");
+  CHECK(fraction(pole) < 0.05);
   CHECK(std::abs(pole["energy"]["obstacle_work_J"].get<double>()) < 1.0);  // a post stands still
 
   // car_to_car: each car's balance counts the work the other car's motion did on it through its body.
@@ -175,6 +172,23 @@ TEST_CASE("Energy balance: the side pole closes, and a car struck by another cou
     CHECK(std::abs(car["energy"]["obstacle_work_J"].get<double>()) > 1000);  // the other car moved
   }
   CHECK(std::abs(fraction(pair[0])) < 0.05);
+}
+
+TEST_CASE("Energy balance: a drinks can of aluminium closes through its hit on a block", "[run][energy]") {
+  // Through the hit and the 0.1 s after it: +3.2 %. With the sedan's steel the can's bends and hinges
+  // were so stiff on its 1.7 g points that the solve never converged: its plastic work was 268 % of its
+  // kinetic energy (docs/CRASH_CALIBRATION.md, "Energy account").
+  scenes::SceneRun run(scenes::loadScene("can_crush", {scenes::parseOverride("duration_s=0.1")}));
+  run.runToEnd();
+  const nlohmann::json can = run.summary()["cars"][0];
+  const nlohmann::json& e = can["energy"];
+  INFO(e.dump());
+  REQUIRE(can["impacted"].get<bool>());
+  const double fraction = e["balance_error_J"].get<double>() / e["kinetic_initial_J"].get<double>();
+  CHECK(fraction > -0.02);  // nothing created
+  CHECK(fraction < 0.05);
+  CHECK(e["plastic_work_J"].get<double>() > 0.5 * e["kinetic_initial_J"].get<double>());  // it dents
+  CHECK(e["plastic_work_J"].get<double>() < e["kinetic_initial_J"].get<double>());
 }
 
 TEST_CASE("Crushed volume converges in N, and the energy per crushed volume is the crush strength",
