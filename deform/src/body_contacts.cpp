@@ -132,6 +132,11 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
     const double reach =
         std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
     if ((g - centre).norm() > radius + reach) continue;  // broad phase: the spheres do not meet
+    // A support shape's box (another car's): the face's box, grown by the margin, outside it meets nothing.
+    if (const auto* convex = std::get_if<ConvexSupportShape>(&shape);
+        convex &&
+        outsideBox(*convex, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), params_.contact_margin_m))
+      continue;
     // Where the distance is cheap (the primitives), the face's own: no point of it is within the margin
     // when its centroid is further than its reach and the margin (a post's bounding sphere, 2 m into the
     // ground, holds half the car).

@@ -135,6 +135,7 @@ void centreOfPoint(const void* object, ccd_vec3_t* out) {
 bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, double margin, Penetration& out) {
   const double reach = s.bounding_radius_m + margin;
   if ((x - s.centre_m).squaredNorm() > reach * reach) return false;  // broad phase
+  if (outsideBox(s, x, x, margin)) return false;
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = supportOfShape;
@@ -183,7 +184,24 @@ ConvexPoints::ConvexPoints(std::vector<Eigen::Vector3d> points_m) : points_m_(st
 }
 
 ConvexSupportShape ConvexPoints::shape() const {
-  return {&ConvexPoints::support, this, centre_m_, radius_m_};
+  ConvexSupportShape shape{&ConvexPoints::support, this, centre_m_, radius_m_};
+  boundingBox(shape);
+  return shape;
+}
+
+void boundingBox(ConvexSupportShape& shape) {
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d axis = Eigen::Vector3d::Unit(k);
+    shape.box_max_m[k] = shape.support(shape.user, axis)[k];
+    shape.box_min_m[k] = shape.support(shape.user, -axis)[k];
+  }
+}
+
+bool outsideBox(const ConvexSupportShape& shape, const Eigen::Vector3d& low_m, const Eigen::Vector3d& high_m,
+                double margin_m) {
+  if (!(shape.box_min_m.array() <= shape.box_max_m.array()).all()) return false;  // unknown
+  return (high_m.array() < shape.box_min_m.array() - margin_m).any() ||
+         (low_m.array() > shape.box_max_m.array() + margin_m).any();
 }
 
 Eigen::Vector3d ConvexPoints::support(const void* user, const Eigen::Vector3d& direction) {
@@ -225,6 +243,10 @@ void checkContactShape(const ContactShape& shape, const char* field_name) {
         } else {
           if (!s.support) throw InputError(field + ".support: missing");
           requireFinite(s.centre_m, field + ".centre_m");
+          if ((s.box_min_m.array() <= s.box_max_m.array()).all()) {
+            requireFinite(s.box_min_m, field + ".box_min_m");
+            requireFinite(s.box_max_m, field + ".box_max_m");
+          }
           requireNonNegative(s.bounding_radius_m, field + ".bounding_radius_m");
         }
       },

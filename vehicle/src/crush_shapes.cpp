@@ -91,6 +91,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
       support.user = swept.get();
       support.centre_m = interiorPoint(shape) + 0.5 * (sweep_m + down_m);
       support.bounding_radius_m = boundingRadius(shape) + sweep_m.norm() + down_m.norm();
+      deform::boundingBox(support);
       shapes_.push_back(support);
       surface_.push_back(surface);
       swept_.push_back(std::move(swept));
@@ -99,6 +100,7 @@ void CrushShapes::add(const ObstacleShape& shape, const Eigen::Vector3d& sweep_m
       support.user = plain.get();
       support.centre_m = interiorPoint(shape);
       support.bounding_radius_m = boundingRadius(shape);
+      deform::boundingBox(support);
       exact_.push_back(support);
       swept_.push_back(std::move(plain));
       return;

@@ -2,6 +2,8 @@
 // Obstacles a control point may not be inside, in the vehicle frame. Exact penetration for primitives;
 // a general convex shape given by its support function goes through libccd (MPR penetration).
 #include <Eigen/Core>
+
+#include <cmath>
 #include <variant>
 #include <vector>
 
@@ -52,7 +54,21 @@ struct ConvexSupportShape {
   const void* user = nullptr;         ///< handed to `support`; must outlive the step that uses the shape
   Eigen::Vector3d centre_m{0, 0, 0};  ///< a point strictly inside the shape [m]
   double bounding_radius_m = 0;       ///< every point of the shape is this close to centre_m [m]
+  /// An axis-aligned box holding the whole shape [m], when known (boundingBox; min above max: unknown).
+  /// A point or a face outside it (grown by the query's margin) meets nothing, so no MPR runs: another
+  /// car's bounding sphere holds half the car that hits it, its box only the contact region.
+  Eigen::Vector3d box_min_m{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  Eigen::Vector3d box_max_m{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
 };
+
+/// The axis-aligned box of a support shape, from its support points along the six axis directions
+/// (exact for any convex shape); sets `box_min_m` and `box_max_m`.
+void boundingBox(ConvexSupportShape& shape);
+
+/// True when the box from `low_m` to `high_m`, grown by `margin_m`, lies wholly outside the shape's known
+/// bounding box (so nothing in it meets the shape); false when they overlap or the box is unknown.
+bool outsideBox(const ConvexSupportShape& shape, const Eigen::Vector3d& low_m, const Eigen::Vector3d& high_m,
+                double margin_m);
 
 /// Any obstacle a control point may not be inside.
 using ContactShape =

@@ -52,12 +52,66 @@ TEST_CASE("libccd's penetration of a support-function box matches the exact box"
   }
 }
 
+TEST_CASE("a support shape's bounding box holds it and changes no answer, only skips the far queries",
+          "[dynamics]") {
+  // A car-like hull, turned: its box is its support points' extent along each axis.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.6, Eigen::Vector3d(0.2, 0.3, 1).normalized()).matrix();
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 60; ++i) {
+    const double a = 2.399963 * i, z = -0.6 + 1.2 * (i + 0.5) / 60;  // a golden-angle spiral
+    const double r = std::sqrt(1 - z * z / 0.36);
+    points.push_back(turn * Eigen::Vector3d(2.2 * r * std::cos(a), 0.9 * r * std::sin(a), z) +
+                     Eigen::Vector3d(1, 2, 0.5));
+  }
+  const ConvexPoints hull(points);
+  const ConvexSupportShape boxed = hull.shape();
+  ConvexSupportShape unboxed = boxed;
+  unboxed.box_min_m.setConstant(HUGE_VAL);
+  unboxed.box_max_m.setConstant(-HUGE_VAL);
+  for (const Eigen::Vector3d& p : points) {
+    CHECK((p.array() >= boxed.box_min_m.array()).all());
+    CHECK((p.array() <= boxed.box_max_m.array()).all());
+  }
+  for (int k = 0; k < 3; ++k) {  // tight: some point on every face of the box
+    const auto along = [k](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a[k] < b[k]; };
+    CHECK(std::max_element(points.begin(), points.end(), along)->coeff(k) == boxed.box_max_m[k]);
+    CHECK(std::min_element(points.begin(), points.end(), along)->coeff(k) == boxed.box_min_m[k]);
+  }
+  // The same answer, bit for bit, for points all around (inside, near, within the margin, far).
+  int inside = 0, skipped = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::Vector3d q =
+        Eigen::Vector3d(1, 2, 0.5) +
+        Eigen::Vector3d(std::sin(1.1 * i) * 2.8, std::sin(2.3 * i + 1) * 2.8, std::sin(3.7 * i + 2) * 1.0);
+    Penetration with, without;
+    const bool in_with = penetration(boxed, q, with, 0.05),
+               in_without = penetration(unboxed, q, without, 0.05);
+    INFO("point " << q.transpose());
+    REQUIRE(in_with == in_without);
+    if (in_with) {
+      CHECK(with.depth_m == without.depth_m);
+      CHECK(with.normal == without.normal);
+      inside += with.depth_m > 0;
+    }
+    const bool in_sphere = (q - boxed.centre_m).norm() <= boxed.bounding_radius_m + 0.05;
+    skipped += in_sphere && outsideBox(boxed, q, q, 0.05);
+  }
+  CHECK(inside > 100);
+  CHECK(skipped > 400);  // queries the sphere let through and the box does not
+  CHECK_FALSE(outsideBox(unboxed, Eigen::Vector3d(1e9, 0, 0), Eigen::Vector3d(1e9, 0, 0), 0));  // unknown
+}
+
 TEST_CASE("bad contact shapes are refused naming the field", "[dynamics]") {
   CHECK_THROWS_WITH(checkContactShape(SphereShape{{0, 0, 0}, -1}, "contacts[0]"),
                     Catch::Contains("contacts[0].radius_m"));
   CHECK_THROWS_WITH(checkContactShape(HalfSpaceShape{{0, 0, 0}, 0}, "contacts[1]"),
                     Catch::Contains("contacts[1].normal"));
   CHECK_THROWS_AS(checkContactShape(ConvexSupportShape{}, "contacts[2]"), InputError);
+  const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const ConvexPoints tetrahedron(corners);
+  ConvexSupportShape nan_box = tetrahedron.shape();
+  nan_box.box_max_m.x() = HUGE_VAL;
+  CHECK_THROWS_WITH(checkContactShape(nan_box, "contacts[3]"), Catch::Contains("contacts[3].box_max_m"));
 }
 
 TEST_CASE("within the contact margin a point outside is reported with a negative depth", "[dynamics]") {
