@@ -3,6 +3,8 @@
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
 
+#include "contained_read.hpp"
+
 #include <assimp/commonMetaData.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -81,8 +83,9 @@ void checkPlyHeader(const std::string& path) {
   std::string head(1 << 20, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
-  const bool ply =
-      head.size() >= 4 && head.compare(0, 3, "ply") == 0 && std::isspace(static_cast<unsigned char>(head[3]));
+  // assimp takes a file for PLY by its first three bytes alone ("ply>333...", found by fuzz_mesh_ply, had
+  // it reading forever as well).
+  const bool ply = head.size() >= 3 && head.compare(0, 3, "ply") == 0;
   if (!ply) return;
   for (std::size_t line = 0; line < head.size();) {
     const std::size_t end = head.find('\n', line);
@@ -269,17 +272,10 @@ VehicleModel loadBuiltin(const std::string& spec, const ImportOptions& options, 
   return model;
 }
 
-VehicleModel loadFile(const std::string& path, const ImportOptions& options, ImportReport& report) {
-  checkScale(options.scale, path);
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw InputError(path + ": file not found");
-  if (std::filesystem::is_directory(status)) throw InputError(path + ": is a directory, not a mesh file");
-
-  const std::string ext = lowerExtension(path);
-  report.format = formatName(ext);
-
-  checkPlyHeader(path);
+/// assimp's part of loadFile (run in a child process): the file's meshes, placed and in the vehicle frame,
+/// before welding; fills the report's axes, unit and instance counts.
+Mesh readWithAssimp(const std::string& path, const std::string& ext, const ImportOptions& options,
+                    ImportReport& report) {
   Assimp::Importer importer;
   // Keep a DAE file's own axes (assimp would rotate Z_UP to Y_UP through the root node); its <unit> stays.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -301,9 +297,7 @@ VehicleModel loadFile(const std::string& path, const ImportOptions& options, Imp
   Eigen::Matrix4d to_vehicle = Eigen::Matrix4d::Identity();
   to_vehicle.topLeftCorner<3, 3>() = (options.scale * conventions.unit_m) * rotation;
 
-  VehicleModel model;
-  model.source = path;
-  Mesh& mesh = model.body;
+  Mesh mesh;
   SceneCollector collector(*scene, path, to_vehicle, report, mesh);
   collector.visit(*scene->mRootNode, Eigen::Matrix4d::Identity(), options.root_transform);
 
@@ -315,6 +309,28 @@ VehicleModel loadFile(const std::string& path, const ImportOptions& options, Imp
       why = "every mesh sits under a node scaled to zero";
     throw InputError(path + ": no triangles (" + why + ")");
   }
+  return mesh;
+}
+
+VehicleModel loadFile(const std::string& path, const ImportOptions& options, ImportReport& report) {
+  checkScale(options.scale, path);
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(path + ": file not found");
+  if (std::filesystem::is_directory(status)) throw InputError(path + ": is a directory, not a mesh file");
+
+  const std::string ext = lowerExtension(path);
+  report.format = formatName(ext);
+
+  checkPlyHeader(path);
+  // assimp aborts on some malformed files (an assertion inside its triangulation, found by fuzz_mesh_ply):
+  // it reads in a child process, and such a file is refused instead of ending the program.
+  VehicleModel model;
+  model.source = path;
+  model.body = readContained(
+      path, [&](ImportReport& child_report) { return readWithAssimp(path, ext, options, child_report); },
+      report, options.importer_cpu_limit_s);
+  Mesh& mesh = model.body;
   checkMesh(mesh, path);  // non-finite after scaling, zero extent
 
   report.raw_vertices = mesh.positions_m.size();

@@ -340,7 +340,47 @@ Override parseOverride(const std::string& text) {
 
 json parseRefusingDuplicates(const std::string& text, const std::string& source);
 
+namespace {
+
+/// Well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF), as JSON text
+/// must be. A file's strings are checked by the parser; a --set key or bare word is not.
+bool validUtf8(const std::string& text) {
+  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+  const unsigned char* end = p + text.size();
+  while (p < end) {
+    const unsigned char c = *p;
+    int follow = 0;
+    unsigned char low = 0x80, high = 0xBF;  // the range of the first continuation byte
+    if (c < 0x80) {
+      ++p;
+      continue;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      follow = 1;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      follow = 2;
+      if (c == 0xE0) low = 0xA0;
+      if (c == 0xED) high = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      follow = 3;
+      if (c == 0xF0) low = 0x90;
+      if (c == 0xF4) high = 0x8F;
+    } else {
+      return false;
+    }
+    if (end - p <= follow) return false;
+    if (p[1] < low || p[1] > high) return false;
+    for (int k = 2; k <= follow; ++k)
+      if (p[k] < 0x80 || p[k] > 0xBF) return false;
+    p += follow + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
 void applyOverride(json& document, const Override& override) {
+  if (!validUtf8(override.path) || !validUtf8(override.value))
+    throw deform::InputError("--set: the key or the value is not valid UTF-8 text");
   // "obstacles[0].x" -> "obstacles.0.x"
   std::string path = override.path;
   std::replace(path.begin(), path.end(), '[', '.');

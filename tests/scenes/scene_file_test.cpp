@@ -138,6 +138,21 @@ TEST_CASE("a number too large for a double is refused naming the file or the --s
                     Catch::Contains("--set duration_s: a number too large for a double: '-2e400'"));
 }
 
+TEST_CASE("a --set key or value that is not UTF-8 is refused, not an internal failure", "[scenes]") {
+  // Found by fuzz_scene (regressions/scene/invalid_utf8_in_set): a bare word with the byte 0xBD became a
+  // JSON string that nlohmann could not write back out (type_error 316), which ended the program.
+  for (const std::string& set : {std::string("name=\xbd"),
+                                 std::string("duration_s=\xbd"
+                                             "2-e400"),
+                                 std::string("vehicle.\xc3=1"), std::string("name=\xed\xa0\x80")})
+    CHECK_THROWS_WITH(scenes::loadScene("wall_crash", {scenes::parseOverride(set)}),
+                      Catch::Contains("--set: the key or the value is not valid UTF-8"));
+  // Well-formed UTF-8 passes on to the key's own check.
+  CHECK(
+      scenes::loadScene("wall_crash", {scenes::parseOverride("name=Kraftwagen \xc3\xa4\xe2\x82\xac")}).name ==
+      "Kraftwagen \xc3\xa4\xe2\x82\xac");
+}
+
 TEST_CASE("a key given twice is refused naming the file and the key's path", "[scenes]") {
   const fs::path path = fs::temp_directory_path() / "scenes_test_duplicate.json";
   const std::string head =

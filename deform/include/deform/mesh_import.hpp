@@ -56,6 +56,9 @@ struct ImportOptions {
   std::optional<Axis> forward;  ///< file's forward axis; default per format (see above)
   bool root_transform = true;   ///< false drops the root node's transform (a global axis or unit node
                                 ///< such as glTF "Yup2Zup", and for DAE the <unit> scale)
+  /// CPU time assimp may take on one file [s], whole seconds, >= 1: it reads in a child process, and a file
+  /// it spends longer on (a hang in assimp) is refused. Large real meshes read in seconds.
+  int importer_cpu_limit_s = 120;
 };
 
 /// What an import did, for reports (docs/MESHES.md, `sandbox mesh info`).
