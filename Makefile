@@ -1,7 +1,9 @@
 # The two user commands. Each installs what is missing, configures, builds and does its job.
-# The sanitizer and fuzz jobs below run on their own; CI (.ci/run) runs `make test` (README, "CI jobs").
+# CI (.ci/run) runs `make ci`: the suite, the suite under the sanitizers, and the fuzz targets (README,
+# "CI jobs").
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
+FUZZ_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 DEFORM_TEST_MESHES ?=
@@ -10,7 +12,7 @@ export DEFORM_TEST_MESHES
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp
 
-.PHONY: all setup build demo test build-asan test-asan fuzz format clean
+.PHONY: all setup build demo test build-asan test-asan build-fuzz fuzz ci format clean
 
 all: build
 
@@ -27,22 +29,30 @@ demo: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The suite built with clang, AddressSanitizer and UndefinedBehaviorSanitizer (and libFuzzer's coverage,
-# so that the fuzz targets come from the same build), run with zero reports allowed.
+# The suite built with GCC, AddressSanitizer and UndefinedBehaviorSanitizer (RelWithDebInfo: -O2 -g,
+# asserts on), run with zero reports allowed.
 build-asan: setup
-	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-	  -DCMAKE_CXX_COMPILER=clang++ -DDEFORM_FUZZ=ON >/dev/null
-	@$(SANITIZER_ENV) cmake --build $(ASAN_DIR) -j $(JOBS)
+	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEFORM_SANITIZE=ON >/dev/null
+	@cmake --build $(ASAN_DIR) -j $(JOBS)
 
 test-asan: build-asan
 	@cd $(ASAN_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 
+# The libFuzzer targets (clang: libFuzzer and the sanitizers on the code they reach), and only them.
+build-fuzz: setup
+	@cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+	  -DCMAKE_CXX_COMPILER=clang++ -DDEFORM_FUZZ=ON >/dev/null
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_targets
+
 # Every libFuzzer target for FUZZ_SECONDS each (tools/fuzz.sh): no crash, leak, or input over 1 s of CPU.
-fuzz: build-asan
-	@$(SANITIZER_ENV) bash tools/fuzz.sh $(ASAN_DIR) $(FUZZ_SECONDS)
+fuzz: build-fuzz
+	@$(SANITIZER_ENV) bash tools/fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+# What CI runs (.ci/run): the README's test command, then the sanitizer suite, then the fuzz job.
+ci: test test-asan fuzz
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	@rm -rf $(BUILD_DIR) $(ASAN_DIR)
+	@rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)
