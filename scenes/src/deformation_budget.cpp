@@ -121,9 +121,9 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // than fast is not worth having: at 30 points a car meeting another costs twice fast's (its larger
   // triangles carry more face samples, each an MPR query against the other car's hull).
   static const std::vector<DeformationLevel> levels = {
-      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.096},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.25},
-      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 1.25}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 2.9},
-      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 5.2},
+      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.067},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.178},
+      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 0.92}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 2.6},
+      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 4.8},
   };
   return levels;
 }
