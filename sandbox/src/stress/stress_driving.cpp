@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <unistd.h>
+
 namespace sandbox {
 namespace {
 
@@ -16,6 +18,16 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// This process's resident memory now [bytes] (/proc/self/statm), 0 when it cannot be read.
+double residentBytes() {
+  std::FILE* statm = std::fopen("/proc/self/statm", "r");
+  if (statm == nullptr) return 0;
+  unsigned long total_pages = 0, resident_pages = 0;
+  const int read = std::fscanf(statm, "%lu %lu", &total_pages, &resident_pages);
+  std::fclose(statm);
+  return read == 2 ? static_cast<double>(resident_pages) * static_cast<double>(sysconf(_SC_PAGESIZE)) : 0.0;
 }
 
 // A drive on an empty ground: 50 km/h with a lane change, a stop, then parked with the handbrake for
@@ -90,7 +102,8 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
       "repeated_impacts",
       std::to_string(impacts_wanted) + " impacts at 15 km/h into the same spot of the wall",
       "every run check; each impact happened; the dent saturates (the last fifth of the impacts adds "
-      "less than the first fifth); the car still drives away"};
+      "less than the first fifth); resident memory flat (under 4 MB more after the last impact than "
+      "after the first fifth); the car still drives away"};
   // wall_crash's car and wall, the car starting at rest: the loop below drives it.
   scenes::SceneRun run(
       scenes::loadScene("wall_crash", {scenes::parseOverride("vehicle.start.speed_kmh=0"),
@@ -101,7 +114,8 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
   enum class Phase { Forward, Reverse, Stop } phase = Phase::Forward;
   bool up_to_speed = false;
   int impacts = 0;
-  std::vector<double> crush_after_m;  // residual crush after each impact
+  std::vector<double> crush_after_m;         // residual crush after each impact
+  std::vector<double> resident_after_bytes;  // this process's resident memory then (a leak grows it)
   double phase_started_s = 0;
   bool stuck = false;
   while (impacts < impacts_wanted && !stuck) {
@@ -127,6 +141,7 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
         input.brake = 1.0;
         if (std::abs(speed_mps) < 0.05) {
           crush_after_m.push_back(simulation.metrics(run.carId(0)).residual_crush_m);
+          resident_after_bytes.push_back(residentBytes());
           phase = Phase::Forward;
           up_to_speed = false;
           phase_started_s = simulation.world().time_s();
@@ -154,13 +169,21 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
     last_fifth_m = crush_after_m.back() - crush_after_m[crush_after_m.size() - 1 - fifth];
     if (!(last_fifth_m < first_fifth_m)) verdict.fail("the dent does not saturate");
   }
-  char figures[240];
+  // Resident memory from the end of the first fifth to the last impact: flat, unless something grows per
+  // step or per impact (the run keeps no per-step history; the allocator's own slack is well under 4 MB).
+  double resident_growth_bytes = 0;
+  if (resident_after_bytes.size() > fifth) {
+    resident_growth_bytes = resident_after_bytes.back() - resident_after_bytes[fifth - 1];
+    if (!(resident_growth_bytes < 4e6)) verdict.fail("resident memory grows with the impacts");
+  }
+  char figures[320];
   std::snprintf(
       figures, sizeof figures,
       "%d impacts in %.0f s simulated; crush %.3f m after the first, %.3f m after the last; first fifth "
-      "added %.3f m, last fifth %.3f m",
+      "added %.3f m, last fifth %.3f m; resident memory %+.2f MB from the first fifth to the last impact",
       impacts, simulation.world().time_s(), crush_after_m.empty() ? 0.0 : crush_after_m.front(),
-      crush_after_m.empty() ? 0.0 : crush_after_m.back(), first_fifth_m, last_fifth_m);
+      crush_after_m.empty() ? 0.0 : crush_after_m.back(), first_fifth_m, last_fifth_m,
+      1e-6 * resident_growth_bytes);
   verdict.figures = figures + std::string("; ") + verdict.figures;
   c.passed = verdict.ok && impacts == impacts_wanted;
   c.detail = verdict.text();
