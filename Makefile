@@ -1,6 +1,6 @@
 # The two user commands. Each installs what is missing, configures, builds and does its job.
-# CI (.ci/run) runs `make ci`: the suite, the suite under the sanitizers, and the fuzz targets (README,
-# "CI jobs").
+# CI (.ci/run) runs `make test`, `make test-asan` and `make fuzz` (`make ci` here runs the same three;
+# README, "CI jobs").
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz
@@ -32,7 +32,8 @@ test: build
 # The suite built with GCC, AddressSanitizer and UndefinedBehaviorSanitizer (RelWithDebInfo: -O2 -g,
 # asserts on), run with zero reports allowed.
 build-asan: setup
-	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEFORM_SANITIZE=ON >/dev/null
+	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=gcc \
+	  -DCMAKE_CXX_COMPILER=g++ -DDEFORM_SANITIZE=ON -DDEFORM_FUZZ=OFF >/dev/null
 	@cmake --build $(ASAN_DIR) -j $(JOBS)
 
 test-asan: build-asan

@@ -46,6 +46,13 @@ for target in scene mesh_obj mesh_stl mesh_ply mesh_gltf mesh_glb; do
   # catches one that never returns; -rss_limit_mb: over 2 GB is one too.
   if "$bin/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$dir/artifacts/" "$dir/corpus" "${inputs[@]}" >"$dir/log.txt" 2>&1; then
+    # A crash file left behind with a passing run is a finding all the same (a handler of libFuzzer's
+    # that ran in a child process, say).
+    if [[ -n "$(ls -A "$dir/artifacts")" ]]; then
+      echo "fuzz: $target left inputs in $dir/artifacts/: $(ls "$dir/artifacts" | head -3)" >&2
+      failed+=("$target")
+      continue
+    fi
     runs=$(awk '/stat::number_of_executed_units/ {print $2}' "$dir/log.txt")
     corpus=$(find "$dir/corpus" -type f | wc -l)
     echo "fuzz: $target passed: ${runs:-?} inputs run in $(( $(date +%s) - started )) s, corpus $corpus inputs"

@@ -22,7 +22,7 @@ packages=(
   gnuplot-nox       # plots of bench grid and tradeoff
   parallel          # GNU parallel: sweep shards on this machine or over ssh (tools/sweep/parallel.sh)
   munge slurmctld slurmd slurm-client # a one-node Slurm for the cluster test (tools/sweep/local-slurm.sh)
-  clang             # the sanitizer build and libFuzzer (make test-asan, make fuzz)
+  clang             # libFuzzer and its sanitizer build (make fuzz; make test-asan is gcc's)
   libclang-rt-14-dev # clang's sanitizer and libFuzzer runtimes
   libomp-14-dev     # OpenMP for clang's build (GCC brings libgomp): cars stepped in parallel (vehicle/)
   llvm              # llvm-symbolizer: sanitizer reports with file and line

@@ -3,12 +3,16 @@
 
 #include <deform/error.hpp>
 
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -35,6 +39,9 @@ constexpr char kMesh = 'M';             // the mesh and the report
 constexpr char kInputError = 'E';       // the file refused: the message
 constexpr char kOtherError = 'X';       // another exception: the message
 constexpr char kSanitizerReport = 'S';  // written by the sanitizer's death callback, nothing after it
+// The child's own failures, not the file's: the pipe closed under it, or its parent gone before it began.
+constexpr int kParentGone = 3;
+constexpr int kNoParent = 4;
 
 int answer_fd = -1;  // the child's end of the pipe, for the death callback
 
@@ -50,7 +57,7 @@ void writeAll(int fd, const void* data, std::size_t size) {
   while (size > 0) {
     const ssize_t n = ::write(fd, bytes, size);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) _exit(3);  // the parent is gone: nobody to answer
+    if (n <= 0) _exit(kParentGone);  // nobody to answer
     bytes += n;
     size -= static_cast<std::size_t>(n);
   }
@@ -112,9 +119,22 @@ class Answer {
   // Dies with the caller (a program stopped mid-import leaves no importer running), and a hang ends at
   // the limit (SIGXCPU).
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-  if (::getppid() != parent) _exit(4);
+  if (::getppid() != parent) _exit(kNoParent);
   const rlimit cpu{static_cast<rlim_t>(cpu_limit_s), static_cast<rlim_t>(cpu_limit_s) + 1};
   ::setrlimit(RLIMIT_CPU, &cpu);
+  const rlimit no_core{0, 0};  // an abort inside assimp leaves no core file behind
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  // The caller's handlers are not the child's: libFuzzer's would save a crash of assimp as its own
+  // finding, Python's faulthandler would print a traceback. A sanitizer keeps its own (its report is a
+  // finding, told to the parent by the death callback).
+  for (int signal : {SIGABRT, SIGXCPU, SIGPIPE}) std::signal(signal, SIG_DFL);
+#ifndef DEFORM_SANITIZED
+  for (int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE}) std::signal(signal, SIG_DFL);
+#endif
+  // No descriptor of the caller's but the answer's and the standard three (another thread's pipe kept
+  // open here would hold its reader until this child ends).
+  if (fd > 3) ::close_range(3, static_cast<unsigned>(fd) - 1, 0);
+  ::close_range(static_cast<unsigned>(fd) + 1, ~0U, 0);
 #ifdef DEFORM_SANITIZED
   __sanitizer_set_death_callback(onSanitizerDeath);
 #endif
@@ -144,6 +164,41 @@ class Answer {
   _exit(0);  // no atexit handlers, no static destructors: they belong to the parent
 }
 
+/// A file descriptor closed when it goes out of scope.
+class OwnedFd {
+ public:
+  explicit OwnedFd(int fd = -1) : fd_(fd) {}
+  OwnedFd(const OwnedFd&) = delete;
+  OwnedFd& operator=(const OwnedFd&) = delete;
+  ~OwnedFd() { reset(); }
+  int get() const { return fd_; }
+  void reset() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_;
+};
+
+/// Reads `fd` to its end or until `deadline`; false when the deadline came first.
+bool readUntil(int fd, std::chrono::steady_clock::time_point deadline, std::string& bytes) {
+  char buffer[1 << 16];
+  pollfd waiting{fd, POLLIN, 0};
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    const int ready = ::poll(&waiting, 1, static_cast<int>(std::min<long long>(left.count(), 60000)));
+    if (ready < 0 && errno != EINTR) return false;
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
 std::string readAll(int fd) {
   std::string bytes;
   char buffer[1 << 16];
@@ -164,37 +219,44 @@ Mesh readContained(const std::string& path, const std::function<Mesh(ImportRepor
     throw InputError("importer_cpu_limit_s: must be at least 1 s (got " + std::to_string(cpu_limit_s) + ")");
   const pid_t parent = ::getpid();
   int fds[2];
-  if (::pipe(fds) != 0)
+  if (::pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error(path + ": cannot open a pipe to the importer: " + std::strerror(errno));
+  OwnedFd answer_end(fds[0]), child_end(fds[1]);
   // What the child writes to stderr (assimp's assertion message, a sanitizer's report) goes to a file of
-  // its own: it becomes part of the one message, or is shown whole for a sanitizer report.
-  std::FILE* child_stderr = std::tmpfile();
+  // its own: it becomes part of the one message, or is shown whole for a sanitizer report. (Without one,
+  // the child's stderr stays the caller's.)
+  OwnedFd child_stderr(::memfd_create("importer-stderr", MFD_CLOEXEC));
   std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t child = ::fork();
-  if (child < 0) {
-    const int error = errno;
-    ::close(fds[0]);
-    ::close(fds[1]);
-    if (child_stderr != nullptr) std::fclose(child_stderr);
-    throw std::runtime_error(path + ": cannot start the importer's process: " + std::strerror(error));
-  }
+  if (child < 0)
+    throw std::runtime_error(path + ": cannot start the importer's process: " + std::strerror(errno));
   if (child == 0) {
-    ::close(fds[0]);
-    if (child_stderr != nullptr) ::dup2(::fileno(child_stderr), STDERR_FILENO);
-    answerInChild(fds[1], read, report, cpu_limit_s, parent);
+    if (child_stderr.get() >= 0) ::dup2(child_stderr.get(), STDERR_FILENO);  // dup2 clears close-on-exec
+    answerInChild(child_end.get(), read, report, cpu_limit_s, parent);
   }
-  ::close(fds[1]);
-  const std::string bytes = readAll(fds[0]);
-  ::close(fds[0]);
+  child_end.reset();
+  // A child that blocks rather than spins (a lock held by another thread at the fork) never reaches its
+  // CPU limit: a wall-clock deadline, generous for a loaded machine, ends it too.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(4 * cpu_limit_s + 30);
+  std::string bytes;
+  bool answered = false;
+  try {
+    answered = readUntil(answer_end.get(), deadline, bytes);
+  } catch (...) {  // out of memory: end the child before going on
+    ::kill(child, SIGKILL);
+    while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    throw;
+  }
+  if (!answered) ::kill(child, SIGKILL);
+  answer_end.reset();
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
+  while (::waitpid(child, &status, 0) < 0)
+    if (errno != EINTR)
+      throw std::runtime_error(path + ": cannot wait for the importer's process: " + std::strerror(errno));
   std::string said;
-  if (child_stderr != nullptr) {
-    std::rewind(child_stderr);
-    said = readAll(::fileno(child_stderr));
-    std::fclose(child_stderr);
-  }
+  if (child_stderr.get() >= 0 && ::lseek(child_stderr.get(), 0, SEEK_SET) == 0)
+    said = readAll(child_stderr.get());
   if (!bytes.empty() && bytes[0] == kSanitizerReport) {
     std::fprintf(stderr, "%s%s: a sanitizer reported an error while importing this file (above)\n",
                  said.c_str(), path.c_str());
@@ -202,18 +264,22 @@ Mesh readContained(const std::string& path, const std::function<Mesh(ImportRepor
   }
   // The child's last line, when it said anything (assimp: "ai_assert failure in ...").
   while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
-  const std::string last_line =
-      said.substr(said.find_last_of('\n') == std::string::npos ? 0 : said.find_last_of('\n') + 1);
+  const std::size_t line_start = said.find_last_of('\n');
+  const std::string last_line = said.substr(line_start == std::string::npos ? 0 : line_start + 1);
   const std::string what = last_line.empty() ? "" : ": " + last_line;
+  if (!answered)
+    throw InputError(path + ": the importer (assimp) gave no answer within " +
+                     std::to_string(4 * cpu_limit_s + 30) + " s on this file (stopped); refused");
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU)
-    throw InputError(
-        path + ": the importer (assimp) ran past its limit of " + std::to_string(cpu_limit_s) +
-        " s of CPU time on this file (a hang in assimp; ImportOptions::importer_cpu_limit_s); refused");
+    throw InputError(path + ": the importer (assimp) ran past its limit of " + std::to_string(cpu_limit_s) +
+                     " s of CPU time on this file (a hang in assimp); refused");
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     throw InputError(path + ": the importer (assimp) crashed on this file (signal " + std::to_string(signal) +
                      ", " + strsignal(signal) + what + "); refused");
   }
+  if (WIFEXITED(status) && (WEXITSTATUS(status) == kParentGone || WEXITSTATUS(status) == kNoParent))
+    throw std::runtime_error(path + ": the importer's process lost its caller");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty())
     throw InputError(path + ": the importer (assimp) stopped on this file without an answer (exit status " +
                      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + what + "); refused");

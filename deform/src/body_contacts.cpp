@@ -70,6 +70,8 @@ void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
             shape.support = &ShiftedSupport::support;
             shape.user = &shifted_[k];
             shape.centre_m += offset;
+            shape.box_min_m += offset;  // an unknown box (infinite corners) stays unknown
+            shape.box_max_m += offset;
           } else {
             shape.centre_m += offset;
           }
