@@ -85,6 +85,19 @@ void appendFacet(ControlMesh& hull, std::vector<uint32_t> corners, const Eigen::
     wind({centre, corners[k], corners[(k + 1) % corners.size()]});
 }
 
+/// Every directed edge has its twin: the triangles close a surface.
+bool closedSurface(const ControlMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      ++directed[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
+  for (const auto& [edge, count] : directed) {
+    const auto twin = directed.find({edge.second, edge.first});
+    if (count != 1 || twin == directed.end() || twin->second != 1) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 ControlMesh convexHull(const std::vector<Eigen::Vector3d>& input, const char* source, FacetSplit split) {
@@ -149,6 +162,16 @@ ControlMesh convexHull(const std::vector<Eigen::Vector3d>& input, const char* so
     std::rotate(t.begin(), t.begin() + m, t.end());
   }
   std::sort(hull.triangles.begin(), hull.triangles.end());
+  if (!closedSurface(hull)) {
+    // Nearly degenerate points (found by fuzz_mesh_stl) can give merged facets whose corners do not
+    // match their neighbours' (a corner on the shared edge of one and not the other), so the centroid fans
+    // leave gaps: qhull's own triangulation is taken instead. Should that not close either, the points
+    // are refused rather than the program stopping at finishControlMesh's check.
+    if (split == FacetSplit::CentroidFan) return convexHull(input, source, FacetSplit::Diagonals);
+    throw InputError(where +
+                     ": the convex hull of the points is not a closed surface (nearly degenerate "
+                     "points)");
+  }
   finishControlMesh(hull);
   return hull;
 }
