@@ -6,6 +6,7 @@ ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
+FUZZ_SEED ?= 1
 DEFORM_TEST_MESHES ?=
 export DEFORM_TEST_MESHES
 # Any sanitizer report fails: ASan and LSan stop with an error, UBSan cannot recover (compile flag).
@@ -46,8 +47,9 @@ build-fuzz: setup
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_targets
 
 # Every libFuzzer target for FUZZ_SECONDS each (tools/fuzz.sh): no crash, leak, or input over 1 s of CPU.
+# FUZZ_SEED=1 (CI's): reproducible from a fresh corpus; FUZZ_SEED=0: libFuzzer picks a seed.
 fuzz: build-fuzz
-	@$(SANITIZER_ENV) bash tools/fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+	@$(SANITIZER_ENV) bash tools/fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
 
 # What CI runs (.ci/run): the README's test command, then the sanitizer suite, then the fuzz job.
 ci: test test-asan fuzz

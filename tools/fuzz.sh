@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of a DEFORM_FUZZ build for SECONDS each (make fuzz; README "CI jobs").
-#   tools/fuzz.sh BUILD_DIR [SECONDS]
+#   tools/fuzz.sh BUILD_DIR [SECONDS] [SEED]
 # Corpus of each target, in BUILD_DIR/fuzz/<target>/: the seeds fuzz_seeds writes (small meshes in every
 # format, the shipped scenes with and without --set overrides), the committed findings
 # (tests/fuzz/regressions/<target>/), and, when DEFORM_TEST_MESHES is set, the shared meshes of the
@@ -8,8 +8,11 @@
 # sanitizer report, leak, input that takes over 1 s of CPU time, or more than 2 GB of memory; the input is left in
 # BUILD_DIR/fuzz/<target>/artifacts/ and must become a file in tests/fuzz/regressions/<target>/.
 set -euo pipefail
-build=${1:?usage: tools/fuzz.sh BUILD_DIR [SECONDS]}
+build=${1:?usage: tools/fuzz.sh BUILD_DIR [SECONDS] [SEED]}
 seconds=${2:-60}
+# libFuzzer's seed: a fixed one makes a run from a fresh corpus reproducible (CI's); 0 lets libFuzzer
+# pick one (a wider search over repeated runs).
+seed=${3:-1}
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$(cd "$build" && pwd)"
 bin="$build/bin"
@@ -44,7 +47,7 @@ for target in scene mesh_obj mesh_stl mesh_ply mesh_gltf mesh_glb; do
   started=$(date +%s)
   # Over 1 s of CPU time per input is a finding (tests/fuzz/cpu_budget.hpp); -timeout=10 (wall clock)
   # catches one that never returns; -rss_limit_mb: over 2 GB is one too.
-  if "$bin/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  if "$bin/fuzz_$target" -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$dir/artifacts/" "$dir/corpus" "${inputs[@]}" >"$dir/log.txt" 2>&1; then
     # A crash file left behind with a passing run is a finding all the same (a handler of libFuzzer's
     # that ran in a child process, say).
