@@ -16,6 +16,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -171,10 +183,13 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
   }
   // Resident memory from the end of the first fifth to the last impact: flat, unless something grows per
   // step or per impact (the run keeps no per-step history; the allocator's own slack is well under 4 MB).
+  // Not under AddressSanitizer: its quarantine keeps freed memory resident (+92 MB over these impacts),
+  // and LeakSanitizer checks leaks in that build instead.
   double resident_growth_bytes = 0;
   if (resident_after_bytes.size() > fifth) {
     resident_growth_bytes = resident_after_bytes.back() - resident_after_bytes[fifth - 1];
-    if (!(resident_growth_bytes < 4e6)) verdict.fail("resident memory grows with the impacts");
+    if (!kAddressSanitizer && !(resident_growth_bytes < 4e6))
+      verdict.fail("resident memory grows with the impacts");
   }
   char figures[320];
   std::snprintf(
