@@ -9,6 +9,7 @@
 #include <deform/error.hpp>
 #include <deform/masses.hpp>
 #include <scenes/car_skin.hpp>
+#include "resident_memory.hpp"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -34,15 +35,6 @@ struct BenchMemoryFlags {
 double heapBytes() {
   const struct mallinfo2 m = mallinfo2();
   return static_cast<double>(m.uordblks + m.hblkhd);  // in use: small blocks + mmapped ones
-}
-
-double residentBytes() {
-  long pages = 0, resident = 0;
-  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
-    std::fclose(f);
-  }
-  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 void runBenchMemory(const BenchMemoryFlags& f) {

@@ -1,4 +1,5 @@
 // The two long stress groups: a long drive ending parked, and the same spot struck again and again.
+#include "resident_memory.hpp"
 #include "stress/stress_checks.hpp"
 #include "stress/stress_suite.hpp"
 
@@ -8,8 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-
-#include <unistd.h>
 
 namespace sandbox {
 namespace {
@@ -30,16 +29,6 @@ constexpr bool kAddressSanitizer = false;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// This process's resident memory now [bytes] (/proc/self/statm), 0 when it cannot be read.
-double residentBytes() {
-  std::FILE* statm = std::fopen("/proc/self/statm", "r");
-  if (statm == nullptr) return 0;
-  unsigned long total_pages = 0, resident_pages = 0;
-  const int read = std::fscanf(statm, "%lu %lu", &total_pages, &resident_pages);
-  std::fclose(statm);
-  return read == 2 ? static_cast<double>(resident_pages) * static_cast<double>(sysconf(_SC_PAGESIZE)) : 0.0;
 }
 
 // A drive on an empty ground: 50 km/h with a lane change, a stop, then parked with the handbrake for
