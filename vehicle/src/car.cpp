@@ -254,7 +254,8 @@ ObstacleShape Car::shape() const {
   return out;
 }
 
-void Car::applyForces(double dt_s) {
+void Car::applyForces(double dt_s, const ode::GeomGrid& geoms) {
+  std::vector<int> ray_candidates;
   const Pose body = bodyPose();
   const Eigen::Matrix3d rotation = body.orientation.toRotationMatrix();
   const Eigen::Vector3d down = -rotation.col(2);
@@ -296,7 +297,8 @@ void Car::applyForces(double dt_s) {
                          (input_.handbrake && w.handbrake ? settings_.handbrake_torque_Nm : 0.0);
 
     const double reach = w.suspension_length_m + w.radius_m;
-    const ode::RayHit hit = ode::castRay(space_, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_);
+    const ode::RayHit hit =
+        ode::castRay(geoms, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_, ray_candidates);
     Eigen::Vector3d forward = Eigen::Vector3d::Zero(), left = Eigen::Vector3d::Zero();
     s.in_contact = hit.hit;
     if (hit.hit) {

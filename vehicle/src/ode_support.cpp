@@ -23,24 +23,21 @@ ConvexData makeConvexData(const std::vector<Eigen::Vector3d>& points,
   return data;
 }
 
-RayHit castRay(dSpaceID space, dGeomID ray, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction,
-               double length_m, dBodyID ignore) {
+RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin_m,
+               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch) {
   dGeomRaySetLength(ray, length_m);
   dGeomRaySet(ray, origin_m.x(), origin_m.y(), origin_m.z(), direction.x(), direction.y(), direction.z());
   const Eigen::Vector3d end = origin_m + length_m * direction;
   const Eigen::Vector3d lo = origin_m.cwiseMin(end), hi = origin_m.cwiseMax(end);
   RayHit best;
-  const int count = dSpaceGetNumGeoms(space);
-  for (int i = 0; i < count; ++i) {
-    dGeomID geom = dSpaceGetGeom(space, i);
+  geoms.candidates(lo, hi, scratch);
+  for (const int i : scratch) {  // ascending, as the space holds them: ties go as they always went
+    dGeomID geom = geoms.geom(i);
     if (ignore != nullptr && dGeomGetBody(geom) == ignore) continue;
-    if (dGeomGetClass(geom) != dPlaneClass) {
-      dReal box[6];
-      dGeomGetAABB(geom, box);
-      if (box[0] > hi.x() || box[1] < lo.x() || box[2] > hi.y() || box[3] < lo.y() || box[4] > hi.z() ||
-          box[5] < lo.z())
-        continue;
-    }
+    const auto& box = geoms.box(i);
+    if (box[0] > hi.x() || box[1] < lo.x() || box[2] > hi.y() || box[3] < lo.y() || box[4] > hi.z() ||
+        box[5] < lo.z())
+      continue;
     dContactGeom contact;
     if (dCollide(ray, geom, 1, &contact, sizeof(dContactGeom)) < 1) continue;
     if (best.hit && !(contact.depth < best.distance_m)) continue;

@@ -3,6 +3,8 @@
 #include <vehicle/pose.hpp>
 #include <vehicle/state_io.hpp>
 
+#include "geom_grid.hpp"
+
 #include <ode/ode.h>
 
 #include <Eigen/Core>
@@ -90,8 +92,8 @@ struct ConvexData {
 ConvexData makeConvexData(const std::vector<Eigen::Vector3d>& points,
                           const std::vector<std::array<uint32_t, 3>>& triangles);
 
-/// The closest hit of a ray (origin, unit direction, length) with the geoms of `space`, skipping geoms of
-/// body `ignore` (the car's own chassis).
+/// The closest hit of a ray (origin, unit direction, length) with the geoms of the space `geoms` was built
+/// from, skipping geoms of body `ignore` (the car's own chassis); `scratch` holds the candidates.
 struct RayHit {
   bool hit = false;
   double distance_m = 0;
@@ -99,8 +101,8 @@ struct RayHit {
   Eigen::Vector3d normal{0, 0, 1};  ///< facing back along the ray
   dBodyID body = nullptr;           ///< the body hit, or null for a static geom
 };
-RayHit castRay(dSpaceID space, dGeomID ray, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction,
-               double length_m, dBodyID ignore);
+RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin_m,
+               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch);
 
 /// Which entity a geom belongs to, packed into its user-data pointer: (kind + 1) << 32 | index.
 inline void* packEntity(uint32_t kind, uint32_t index) {

@@ -23,6 +23,9 @@ namespace vehicle {
 
 class StateWriter;
 class StateReader;
+namespace ode {
+class GeomGrid;
+}
 
 /// What a wheel is doing, for the renderer (turning, steering, riding wheels) and for metrics.
 struct WheelState {
@@ -102,8 +105,9 @@ class Car {
   Car(dxWorld* world, dxSpace* space, void* geom_data, const deform::ControlMesh& hull,
       const VehicleSettings& settings, std::vector<WheelSettings> wheels, const Pose& vehicle_pose,
       const Eigen::Vector3d& velocity_mps);
-  /// Steering, engine, wheels (ray, suspension, tyre) and drag forces for a step of dt_s.
-  void applyForces(double dt_s);
+  /// Steering, engine, wheels (ray, suspension, tyre) and drag forces for a step of dt_s; the wheels'
+  /// rays meet the geoms `geoms` (World's, built this step) finds near them.
+  void applyForces(double dt_s, const ode::GeomGrid& geoms);
   /// The ODE body's mass and inertia (about its origin, the centre of mass).
   void setChassisMass(double mass_kg, const Eigen::Matrix3d& inertia_kg_m2);
   /// Everything a step changes (World::saveState): the chassis body's motion, steering, driver input,

@@ -1,0 +1,43 @@
+#pragma once
+// The space's geoms bucketed by their boxes on a uniform grid in x and y, built once per step before the
+// wheels cast their rays (no body moves while they do, nor until ODE's collision pass): a ray's
+// candidates are the geoms in the cells its box covers, and the collision pass's are the pairs that share
+// a cell, not every geom and every pair in the space. With 200 cars every wheel's ray had tested every
+// geom's box, half of the step's time, and ODE's simple space every pair of boxes, a sixth of it
+// (docs/BENCHMARKS.md, "Many cars"). Both come out in the space's order, so the results are the same to
+// the bit.
+#include <ode/ode.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vehicle::ode {
+
+class GeomGrid {
+ public:
+  /// Buckets every geom of `space` (planes, and geoms whose box is unbounded or spans too many cells,
+  /// are candidates everywhere).
+  void build(dSpaceID space);
+  /// The geoms whose boxes may meet the box [lo, hi], in the space's order (ascending index), each once.
+  void candidates(const Eigen::Vector3d& lo_m, const Eigen::Vector3d& hi_m, std::vector<int>& out) const;
+  /// Every pair (i < j) of geoms that share a cell, or of which one is everywhere, ascending in (i, j):
+  /// the order ODE's simple space meets them in.
+  void pairs(std::vector<uint64_t>& out) const;
+  dGeomID geom(int index) const { return geoms_[static_cast<std::size_t>(index)]; }
+  /// The box ODE gave geom `index` when the grid was built: min x, max x, min y, max y, min z, max z.
+  const std::array<dReal, 6>& box(int index) const { return boxes_[static_cast<std::size_t>(index)]; }
+
+ private:
+  std::vector<dGeomID> geoms_;
+  std::vector<std::array<dReal, 6>> boxes_;
+  std::vector<int> everywhere_;
+  double x0_m_ = 0, y0_m_ = 0, cell_m_ = 4.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> cell_start_, cell_items_;  ///< cell c holds cell_items_[cell_start_[c] .. [c + 1])
+  int cellX(double x_m) const;
+  int cellY(double y_m) const;
+};
+
+}  // namespace vehicle::ode
