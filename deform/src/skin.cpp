@@ -89,17 +89,31 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
           detail::widenSpan(v, control_rest_m, ranked, candidates);
         }
       }
-      // Slots in index order: deterministic, and the displacement reads walk forward through memory.
-      std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
-      for (std::size_t k = 0; k < K; ++k) {
-        chosen[k] = ranked[k].index;
-        distance[k] = std::sqrt(ranked[k].distance2_m2);
-        point[k] = control_rest_m[chosen[k]];
+      auto weigh = [&] {
+        // Slots in index order: deterministic, and the displacement reads walk forward through memory.
+        std::sort(ranked.begin(), ranked.end(),
+                  [](const auto& a, const auto& b) { return a.index < b.index; });
+        for (std::size_t k = 0; k < K; ++k) {
+          chosen[k] = ranked[k].index;
+          distance[k] = std::sqrt(ranked[k].distance2_m2);
+          point[k] = control_rest_m[chosen[k]];
+        }
+        if (options.method != SkinMethod::mls) {
+          detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
+          return true;
+        }
+        return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
+                                                 weight.data());
+      };
+      // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
+      // not exact for affine maps: widen the points across their plane by their own extent and fit again.
+      if (!weigh() && K < n) {
+        candidates.clear();
+        for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+        std::sort(candidates.begin(), candidates.end());
+        detail::widenSpan(v, control_rest_m, ranked, candidates, true);
+        weigh();
       }
-      if (options.method == SkinMethod::mls)
-        detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha, weight.data());
-      else
-        detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
       for (std::size_t k = 0; k < K; ++k) {
         built_indices[j * K + k] = chosen[k];
         built_weights[j * K + k] = static_cast<float>(weight[k]);

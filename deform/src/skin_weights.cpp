@@ -20,12 +20,12 @@ void inverseDistanceWeights(const double* distance_m, std::size_t count, double 
   for (std::size_t k = 0; k < count; ++k) weight[k] /= sum;  // sum >= 1: the nearest contributes 1
 }
 
-void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
+bool movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
                                const double* distance_m, std::size_t count, double alpha, double* weight) {
   // theta_k: the inverse-distance weights, normalised (sum 1). On a control point they are already the
   // interpolant (that point alone), and the affine fit below adds nothing.
   inverseDistanceWeights(distance_m, count, alpha, weight);
-  if (*std::min_element(distance_m, distance_m + count) == 0) return;
+  if (*std::min_element(distance_m, distance_m + count) == 0) return true;
 
   // Schaefer, McPhail & Warren 2006, equations (4)-(5), affine map, written for weights: with
   //   p* = sum_k theta_k p_k,  p^_k = p_k - p*,  M = sum_k theta_k p^_k p^_k^T,
@@ -73,7 +73,7 @@ void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
   double delta_abs_sum = 0;
   for (std::size_t k = 0; k < count; ++k) {
     delta[k] = weight[k] * offset_per_m.dot(p_hat_m[k]);
-    if (!std::isfinite(delta[k])) return;  // not expected with the floor above; keep the inverse distances
+    if (!std::isfinite(delta[k])) return false;  // not expected with the floor above: the inverse distances
     delta_abs_sum += std::abs(delta[k]);
   }
   // Bounded extrapolation: a vertex far outside a thin (nearly flat) set of points would need weights in
@@ -84,6 +84,7 @@ void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
   constexpr double kMaxWeightAbsSum = 20.0;  // [-]
   const double share = std::min(1.0, (kMaxWeightAbsSum - 1.0) / std::max(delta_abs_sum, 1e-300));
   for (std::size_t k = 0; k < count; ++k) weight[k] += share * delta[k];
+  return share >= 1.0;
 }
 
 namespace {
@@ -127,12 +128,13 @@ bool offsetOutOfSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector
 }
 
 bool widenSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
-               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates) {
+               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates, bool thick) {
   uint32_t added[2] = {0, 0};
   PointSpread s = pointSpread(control_m, chosen);
   for (int swap = 0; swap < 2 && chosen.size() >= 4; ++swap) {
-    if (!outOfSpan(v_m, s)) return true;
-    const double offset_m = std::abs((v_m - s.mean_m).dot(s.thinnest));
+    if (!(thick && swap == 0) && !outOfSpan(v_m, s)) return true;
+    const double offset_m = thick ? std::max(std::abs((v_m - s.mean_m).dot(s.thinnest)), 2.0 * s.extent_m)
+                                  : std::abs((v_m - s.mean_m).dot(s.thinnest));
     const RankedPoint* found = nullptr;
     for (const RankedPoint& c : candidates) {
       const bool taken =

@@ -19,8 +19,9 @@ void inverseDistanceWeights(const double* distance_m, std::size_t count, double 
 /// as the least-squares weight: sum_k w_k = 1 and sum_k w_k p_k = v in every direction the points span.
 /// Directions the points do not span (coplanar, collinear, fewer than four points) are dropped from the
 /// fit: the weights there are those of the weighted centroid. Finite for any input; a vertex on a control
-/// point takes that point alone.
-void movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
+/// point takes that point alone. Returns false when the fit had to be bounded (sum |w| capped, a vertex
+/// far outside nearly flat points): the weights are then not exact for affine maps.
+bool movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
                                const double* distance_m, std::size_t count, double alpha, double* weight);
 
 /// Whether vertex `v_m` lies off the plane (or line) of the `chosen` control points by more than three
@@ -33,7 +34,10 @@ bool offsetOutOfSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector
 /// nearest of `candidates` (nearest first) lying off their plane by at least half the vertex's offset,
 /// so the fit spans the vertex with moderate weights; a swap that leaves the points thinner is undone.
 /// Returns false when the candidates held no such point (`chosen` then partly widened).
+/// `thick`: widen whatever the offset, with candidates off the plane by at least the points' own extent
+/// (for a vertex whose fit over thin points was bounded, movingLeastSquaresWeights).
 bool widenSpan(const Eigen::Vector3d& v_m, const std::vector<Eigen::Vector3d>& control_m,
-               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates);
+               std::vector<RankedPoint>& chosen, const std::vector<RankedPoint>& candidates,
+               bool thick = false);
 
 }  // namespace deform::detail

@@ -68,19 +68,21 @@ TEST_CASE("mls reproduces a crash-sized affine map of the control points on the 
   CHECK(deform::affineReproductionErrorMax(dense, s.car.body.positions_m, s.control, map, 2) < 1e-5);
 }
 
-TEST_CASE("mls reaches vertices off a flat side of the hull: 250 and 1000 control points", "[skin][mls]") {
+TEST_CASE("mls reaches vertices off a flat side of the hull: 250 to 4000 control points", "[skin][mls]") {
   // At these levels of detail the eight nearest points of a vertex inside the car often all lie on one
-  // flat side of the hull; a point off that side is taken in their place.
+  // flat side of the hull; a point off that side is taken in their place. From 2000 points some vertices
+  // a few millimetres off points thinner still needed more than the cap on sum |w| (20): the affine map
+  // was 2 mm out at 2000 points until such a fit was widened and done again.
   Sedan s;
   const deform::AffineMap map = deform::crashSizedAffineMap(s.centre_m);
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : s.car.body.positions_m) points.push_back(p.cast<double>());
-  for (std::size_t n : {250u, 1000u}) {
+  for (std::size_t n : {250u, 1000u, 2000u, 4000u}) {
     CAPTURE(n);
     const auto control = deform::buildControlMesh(points, n).points_m;
     const auto mls = deform::Skin::build(s.car.body.positions_m, control, {3.5, 8, 2, SkinMethod::mls});
     CHECK(deform::affineReproductionErrorMax(mls, s.car.body.positions_m, control, map, 2) < 1e-5);
-    CHECK(deform::skinWeightSpread(mls).largest_abs_weight < 5);  // well inside the cap on sum |w|, 20
+    CHECK(deform::skinWeightSpread(mls).largest_abs_weight < (n <= 1000 ? 5 : 10));  // cap on sum |w|: 20
   }
 }
 
