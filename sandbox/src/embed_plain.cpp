@@ -22,23 +22,29 @@ PlainSkin makePlainSkin(const deform::Skin& skin, const std::vector<Eigen::Vecto
 
 void plainSkinPass(const PlainSkin& skin, const std::vector<PlainPoint>& displacement_m,
                    std::vector<PlainPoint>& out_m, unsigned threads) {
-  const std::size_t K = skin.influences;
+  // As the reference is built and run (g++ -O3 -march=native -fopenmp; an OpenMP static loop): this file
+  // is compiled with -march=native and OpenMP (sandbox/CMakeLists.txt), the project's own pass is not.
+  const long K = static_cast<long>(skin.influences);
   const PlainPoint* disp = displacement_m.data();
-  deform::parallelFor(skin.rest_m.size(), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t j = begin; j < end; ++j) {
-      float dx = 0, dy = 0, dz = 0;
-      const uint16_t* id = &skin.index[j * K];
-      const float* w = &skin.weight[j * K];
-      for (std::size_t k = 0; k < K; ++k) {
-        const PlainPoint& d = disp[id[k]];
-        dx += w[k] * d.x;
-        dy += w[k] * d.y;
-        dz += w[k] * d.z;
-      }
-      const PlainPoint& r = skin.rest_m[j];
-      out_m[j] = {r.x + dx, r.y + dy, r.z + dz};
+  const PlainPoint* rest = skin.rest_m.data();
+  const uint16_t* index = skin.index.data();
+  const float* weight = skin.weight.data();
+  PlainPoint* out = out_m.data();
+  const long count = static_cast<long>(skin.rest_m.size());
+  const int team = static_cast<int>(deform::resolveThreads(threads));
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (long j = 0; j < count; ++j) {
+    float dx = 0, dy = 0, dz = 0;
+    const uint16_t* id = &index[j * K];
+    const float* w = &weight[j * K];
+    for (long k = 0; k < K; ++k) {
+      const PlainPoint& d = disp[id[k]];
+      dx += w[k] * d.x;
+      dy += w[k] * d.y;
+      dz += w[k] * d.z;
     }
-  });
+    out[j] = {rest[j].x + dx, rest[j].y + dy, rest[j].z + dz};
+  }
 }
 
 }  // namespace sandbox

@@ -27,7 +27,8 @@ struct PlainSkin {
 /// Copies `skin` (at most 65,536 control points) into the plain arrays.
 PlainSkin makePlainSkin(const deform::Skin& skin, const std::vector<Eigen::Vector3f>& rest_m);
 
-/// out_j = rest_j + sum_k w_jk d_(i_jk), on `threads` threads (deform::parallelFor, as the project's pass).
+/// out_j = rest_j + sum_k w_jk d_(i_jk), on `threads` threads (0: every core), built and threaded as the
+/// reference is: -march=native, an OpenMP static loop.
 void plainSkinPass(const PlainSkin& skin, const std::vector<PlainPoint>& displacement_m,
                    std::vector<PlainPoint>& out_m, unsigned threads);
 
