@@ -15,7 +15,7 @@ void registerBenchCarsCommand(CLI::App& bench) {
       "cars", "Many sedans cruising at 60 Hz: set-up, cost per simulated second by stage, 1 and 2 threads");
   cmd->add_option("--out", options->out_dir, "Folder for cars.csv, cars.md and cars.png")
       ->capture_default_str();
-  cmd->add_flag("--quick", *quick, "1, 10 and 50 cars for 1 simulated second (well under a minute)");
+  cmd->add_flag("--quick", *quick, "The same car counts for 1 simulated second (well under a minute)");
   cmd->add_flag(
       "--skip-when-idle", options->skip_when_idle,
       "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle)");
@@ -30,10 +30,7 @@ void registerBenchCarsCommand(CLI::App& bench) {
     if (options->budget_ms && !(*options->budget_ms >= 0))
       throw deform::InputError("--budget-ms: must be >= 0");
     CarsBenchOptions run = *options;
-    if (*quick) {
-      run.cars = {1, 10, 50};
-      run.duration_s = 1.0;
-    }
+    if (*quick) run.duration_s = 1.0;  // every count: 200 cars cost about 1 s since the grid broad phase
     writeCarsBenchReport(run, runCarsBench(run));
   });
 }

@@ -40,20 +40,27 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
     fastest_point_mps = std::max(fastest_point_mps, v.norm());
   const Eigen::Vector3d core_world_m = car.vehiclePose().toWorld(dc.body_settings->core_m);
   const EntityRef self{EntityRef::Kind::Car, dc.id};
-  auto consider = [&](EntityRef other, const Box& box) {
-    if (other == self || !crushable(world, other) ||
-        std::find(dc.touching.begin(), dc.touching.end(), other) != dc.touching.end())
-      return;
-    const double closing_mps =
-        (velocityOf(other, core_world_m) - velocityOf(self, core_world_m)).norm() +
-        (angularVelocityOf(other) - car.angularVelocity_rad_s()).norm() * mine.halfDiagonal_m() +
-        fastest_point_mps;
-    if (mine.grown(closing_mps * world.fixedDt_s() + kApproachMargin_m).overlaps(box))
+  const Eigen::Vector3d self_mps = velocityOf(self, core_world_m);
+  const Eigen::Vector3d self_radps = car.angularVelocity_rad_s();
+  auto consider = [&](EntityRef other, const Box& box, const Eigen::Vector3d& other_mps,
+                      const Eigen::Vector3d& other_radps) {
+    const double closing_mps = (other_mps - self_mps).norm() +
+                               (other_radps - self_radps).norm() * mine.halfDiagonal_m() + fastest_point_mps;
+    if (mine.grown(closing_mps * world.fixedDt_s() + kApproachMargin_m).overlaps(box) &&
+        std::find(dc.touching.begin(), dc.touching.end(), other) == dc.touching.end())
       dc.touching.push_back(other);
   };
-  for (ObstacleId o = 0; o < world.obstacleCount(); ++o)
-    consider({EntityRef::Kind::Obstacle, o}, obstacle_boxes[o]);
-  for (CarId c = 0; c < world.carCount(); ++c) consider({EntityRef::Kind::Car, c}, car_boxes[c]);
+  for (ObstacleId o = 0; o < world.obstacleCount(); ++o) {
+    const EntityRef other{EntityRef::Kind::Obstacle, o};
+    if (crushable(world, other))
+      consider(other, obstacle_boxes[o], velocityOf(other, core_world_m), angularVelocityOf(other));
+  }
+  for (CarId c = 0; c < world.carCount(); ++c) {  // velocityOf(car, core) and its turn, from car_motion
+    if (c == dc.id) continue;
+    const CarMotion& m = car_motion[c];
+    consider({EntityRef::Kind::Car, c}, car_boxes[c],
+             m.velocity_mps + m.omega_radps.cross(core_world_m - m.com_m), m.omega_radps);
+  }
 }
 
 void Simulation::Impl::prepareCar(DeformableCar& dc) const {
@@ -221,14 +228,17 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
     world.applyImpulse({EntityRef::Kind::Car, dc.id}, frame.orientation * report.core_impulse_Ns,
                        car.bodyPose().position_m, frame.orientation * moment);
     world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
+    refreshMotion(dc.id);
     dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
     for (std::size_t k = 0; k < dc.touching.size(); ++k) {  // one contact shape per touched entity
       const EntityRef& other = dc.touching[k];
       if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
         continue;  // another deformable car takes its share through its own body
       const Eigen::Vector3d impulse = report.contact_impulse_per_obstacle_Ns[k];
-      if (impulse.squaredNorm() > 0 && impulse.allFinite())
+      if (impulse.squaredNorm() > 0 && impulse.allFinite()) {
         world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
+        if (other.kind == EntityRef::Kind::Car) refreshMotion(other.index);
+      }
     }
   }
   dc.previous_velocity_mps = car.velocity_mps();

@@ -132,6 +132,17 @@ struct Simulation::Impl {
     return *cars[static_cast<std::size_t>(index_of[id])];
   }
 
+  /// Per CarId, within a step: the chassis's velocity, turn and centre of mass (world), as ODE has them
+  /// now (refreshMotion after ODE's step and after every change finishCar makes): addApproaching reads
+  /// every other car's for every car, and ODE's pose costs a quaternion each time.
+  struct CarMotion {
+    Eigen::Vector3d velocity_mps{0, 0, 0}, omega_radps{0, 0, 0}, com_m{0, 0, 0};
+  };
+  std::vector<CarMotion> car_motion;
+  void refreshMotion(CarId c) {
+    const Car& car = world.car(c);
+    car_motion[c] = {car.velocity_mps(), car.angularVelocity_rad_s(), car.bodyPose().position_m};
+  }
   std::vector<Eigen::Vector3d> car_velocity_before;  ///< per CarId: velocity before this step [m/s]
   Eigen::Vector3d velocityBefore(EntityRef e) const {
     if (e.kind == EntityRef::Kind::Car && e.index < car_velocity_before.size())

@@ -150,6 +150,8 @@ void Simulation::step() {
   timings.solve_ms = world.solve_ms;
   t = Clock::now();
   for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
+  m.car_motion.resize(m.world.carCount());
+  for (CarId c = 0; c < m.world.carCount(); ++c) m.refreshMotion(c);
   m.updateBoxes();
   const std::vector<uint8_t> coupled = m.coupledCars();
   bool any_skips = false;
