@@ -150,19 +150,21 @@ struct Simulation::Impl {
     return velocityOf(e);
   }
 
+  /// The velocity of a car's centre of mass, or of a free obstacle's (its body's origin) [m/s].
   Eigen::Vector3d velocityOf(EntityRef e) const {
     if (e.kind == EntityRef::Kind::Car) return world.car(e.index).velocity_mps();
-    return Eigen::Vector3d::Zero();  // obstacles: static or slow next to a car
+    return world.obstacleVelocity_mps(e.index, world.obstaclePose(e.index).position_m);
   }
-  /// The velocity of `e`'s material at the world point `p_m` [m/s] (velocityOf plus its turn).
+  /// The velocity of `e`'s material at the world point `p_m` [m/s] (velocityOf plus its turn): a box
+  /// falling on a car comes at its own speed, and does its work on the body (EnergyTerms).
   Eigen::Vector3d velocityOf(EntityRef e, const Eigen::Vector3d& p_m) const {
-    if (e.kind != EntityRef::Kind::Car) return velocityOf(e);
+    if (e.kind != EntityRef::Kind::Car) return world.obstacleVelocity_mps(e.index, p_m);
     const Car& car = world.car(e.index);
     return car.velocity_mps() + car.angularVelocity_rad_s().cross(p_m - car.bodyPose().position_m);
   }
   Eigen::Vector3d angularVelocityOf(EntityRef e) const {  ///< (world) [rad/s]
     if (e.kind == EntityRef::Kind::Car) return world.car(e.index).angularVelocity_rad_s();
-    return Eigen::Vector3d::Zero();
+    return world.obstacleAngularVelocity_radps(e.index);
   }
 
   /// The shape of `e` in the world; a deformable car as its control points now.

@@ -520,6 +520,18 @@ Pose World::obstaclePose(ObstacleId id) const {
   return ode::geomPose(o.geom);
 }
 
+Eigen::Vector3d World::obstacleVelocity_mps(ObstacleId id, const Eigen::Vector3d& point_m) const {
+  const ObstacleEntry& o = impl_->obstacles.at(id);
+  if (o.body == nullptr) return Eigen::Vector3d::Zero();
+  return ode::vec(dBodyGetLinearVel(o.body)) +
+         ode::vec(dBodyGetAngularVel(o.body)).cross(point_m - ode::vec(dBodyGetPosition(o.body)));
+}
+
+Eigen::Vector3d World::obstacleAngularVelocity_radps(ObstacleId id) const {
+  const ObstacleEntry& o = impl_->obstacles.at(id);
+  return o.body == nullptr ? Eigen::Vector3d::Zero() : ode::vec(dBodyGetAngularVel(o.body));
+}
+
 ObstacleShape World::obstacleShape(ObstacleId id) const {
   const ObstacleEntry& o = impl_->obstacles.at(id);
   if (o.kind == ObstacleKind::Ground) return o.local;

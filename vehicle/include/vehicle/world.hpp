@@ -158,6 +158,10 @@ class World {
   bool obstacleIsDynamic(ObstacleId id) const;
   /// Pose of the obstacle's own frame (its shape's local coordinates) now.
   Pose obstaclePose(ObstacleId id) const;
+  /// The velocity of the obstacle's material at the world point `point_m`, and its angular velocity
+  /// (world): zero for a static obstacle or the ground [m/s], [rad/s].
+  Eigen::Vector3d obstacleVelocity_mps(ObstacleId id, const Eigen::Vector3d& point_m) const;
+  Eigen::Vector3d obstacleAngularVelocity_radps(ObstacleId id) const;
   /// The obstacle's shape in the world now (for the crush coupling: transformShape it into a car's
   /// vehicle frame, query supportPoint or pointPenetration).
   ObstacleShape obstacleShape(ObstacleId id) const;
