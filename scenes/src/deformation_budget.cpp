@@ -117,13 +117,15 @@ double cameraDistance(const SceneConfig& scene, std::size_t car) {
 
 const std::vector<DeformationLevel>& deformationLevels() {
   // deform's timing_ms over deform_steps.solved, this machine, one thread (docs/BENCHMARKS.md,
-  // "Deformation levels", with the commands). K changes the skin's cost, not the step's. A coarser level
-  // than fast is not worth having: at 30 points a car meeting another costs twice fast's (its larger
-  // triangles carry more face samples, each an MPR query against the other car's hull).
+  // "Deformation levels", with the commands); against another car, over the steps the two cars touch
+  // (car_to_car's whole run averaged the hit with the free spin after it, 4x less: `traffic`'s pile-up,
+  // pressed together for 7 s, ran at 1.6x its budget). K changes the skin's cost, not the step's. A
+  // coarser level than fast is not worth having: at 30 points a car meeting another costs twice fast's
+  // (its larger triangles carry more face samples, each an MPR query against the other car's hull).
   static const std::vector<DeformationLevel> levels = {
-      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.067},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.178},
-      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 0.92}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 2.6},
-      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 4.8},
+      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.34},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.69},
+      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 3.5}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 8.4},
+      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 17.4},
   };
   return levels;
 }
