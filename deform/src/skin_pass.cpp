@@ -8,6 +8,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define DEFORM_SKIN_AVX2 1  // an AVX2 form, chosen at run time where the machine has it
+#endif
 
 namespace deform {
 namespace {
@@ -107,10 +111,51 @@ inline __m128 displacementSum(const Slots& slots, std::size_t first, std::size_t
 }
 #endif
 
+#if defined(DEFORM_SKIN_AVX2)
+/// Whether the machine runs AVX2 (asked once).
+bool hasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+/// deformRangeImpl for K a multiple of four, two slots per 256-bit register: the low half sums the even
+/// slots and the high half the odd ones, each in the order the SSE form sums them, with no fused
+/// multiply-add (the target is AVX2 alone), so the results are the SSE form's to the bit.
+template <std::size_t KFixed, class Slots>
+__attribute__((target("avx2"))) void deformRangeAvx2(const Slots& slots, const Eigen::Vector3f* rest,
+                                                     const float* d, Eigen::Vector3f* out, std::size_t begin,
+                                                     std::size_t end) {
+  static_assert(KFixed > 0 && KFixed % 4 == 0, "four slots at a time");
+  const __m256i first_pair = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+  const __m256i second_pair = _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3);
+  std::size_t j = begin;
+  for (; j + 1 < end; ++j) {  // the last vertex in scalar form, as the SSE form does
+    const std::size_t first = j * KFixed;
+    __m256 sum = _mm256_setzero_ps();
+    for (std::size_t k = 0; k < KFixed; k += 4) {
+      const __m256 w = _mm256_castps128_ps256(slots.weights4(first + k));
+      __m256 d01 = _mm256_castps128_ps256(_mm_load_ps(d + 4 * std::size_t{slots.indexAt(first + k)}));
+      d01 = _mm256_insertf128_ps(d01, _mm_load_ps(d + 4 * std::size_t{slots.indexAt(first + k + 1)}), 1);
+      __m256 d23 = _mm256_castps128_ps256(_mm_load_ps(d + 4 * std::size_t{slots.indexAt(first + k + 2)}));
+      d23 = _mm256_insertf128_ps(d23, _mm_load_ps(d + 4 * std::size_t{slots.indexAt(first + k + 3)}), 1);
+      sum = _mm256_add_ps(sum, _mm256_mul_ps(_mm256_permutevar8x32_ps(w, first_pair), d01));
+      sum = _mm256_add_ps(sum, _mm256_mul_ps(_mm256_permutevar8x32_ps(w, second_pair), d23));
+    }
+    const __m128 total = _mm_add_ps(_mm256_castps256_ps128(sum), _mm256_extractf128_ps(sum, 1));
+    _mm_storeu_ps(out[j].data(), _mm_add_ps(_mm_loadu_ps(rest[j].data()), total));
+  }
+  for (; j < end; ++j) deformVertexScalar(slots, j * KFixed, KFixed, rest[j], d, out[j]);
+}
+#endif
+
 template <std::size_t KFixed, class Slots>
 void deformRangeImpl(const Slots& slots, std::size_t K_runtime, const Eigen::Vector3f* rest, const float* d,
                      Eigen::Vector3f* out, std::size_t begin, std::size_t end) {
   const std::size_t K = KFixed ? KFixed : K_runtime;
+#if defined(DEFORM_SKIN_AVX2)
+  if constexpr (KFixed > 0 && KFixed % 4 == 0)
+    if (hasAvx2()) return deformRangeAvx2<KFixed>(slots, rest, d, out, begin, end);
+#endif
   std::size_t j = begin;
 #if defined(__SSE2__)
   // 16-byte stores of a 12-byte vertex touch the next vertex's x: the last vertex of the range is done in
