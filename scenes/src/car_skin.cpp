@@ -39,9 +39,22 @@ CarSkin::CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> s
   // negative weights.
   for (std::size_t j = 0; j < skin_->vertexCount(); ++j) {
     double gain = 0;
-    for (std::size_t k = 0; k < skin_->influences(); ++k) gain += std::abs(skin_->slotWeight(j, k));
+    for (std::size_t k = 0; k < skin_->influences(); ++k) {
+      gain += std::abs(skin_->slotWeight(j, k));
+      nonnegative_weights_ = nonnegative_weights_ && skin_->slotWeight(j, k) >= 0;
+    }
     displacement_gain_ = std::max(displacement_gain_, gain);
   }
+}
+
+double CarSkin::reachAlong_m(const std::vector<Eigen::Vector3d>& displacements_m,
+                             const Eigen::Vector3d& into) const {
+  // n . (v - v0) = sum_i w_i (n . d_i): with weights that are all >= 0 and sum to 1 (idw) at most the
+  // largest n . d_i, else at most gain x the largest |n . d_i|.
+  double largest_m = 0;
+  for (const Eigen::Vector3d& d : displacements_m)
+    largest_m = std::max(largest_m, nonnegative_weights_ ? into.dot(d) : std::abs(into.dot(d)));
+  return (nonnegative_weights_ ? 1.0 : displacement_gain_) * largest_m + deform::kProjectionClearance_m;
 }
 
 Eigen::Vector3f CarSkin::skinPosition(std::size_t vertex) const {
@@ -96,7 +109,14 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   const double reach_m = obstacles.empty() ? 0 : displacementBound_m(displacements_m);
   for (const deform::ContactShape& shape : obstacles) {
     candidates_.clear();
-    deform::verticesNear(shape, grid_, reach_m, candidates_);
+    // The ground (or any half-space): only a vertex that moved into it can be in it, so the reach is the
+    // points' largest motion along its inward normal, not their largest motion: after a frontal crash a
+    // few centimetres of sag, not the 0.5 m the front moved back (10,000 of 20,000 vertices tested in
+    // wall_crash's busiest frames before).
+    const auto* ground = std::get_if<deform::HalfSpaceShape>(&shape);
+    const double shape_reach_m =
+        ground ? std::min(reach_m, reachAlong_m(displacements_m, -ground->normal.normalized())) : reach_m;
+    deform::verticesNear(shape, grid_, shape_reach_m, candidates_);
     last_projection_.tested += candidates_.size();
     if (std::holds_alternative<deform::HalfSpaceShape>(shape))
       last_projection_.tested_ground += candidates_.size();

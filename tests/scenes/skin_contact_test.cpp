@@ -82,6 +82,10 @@ TEST_CASE("no render vertex is more than 1 cm inside an obstacle in any filmed f
         update_ms / static_cast<double>(frame_count * static_cast<int>(run.carCount())),
         projection_ms / static_cast<double>(frame_count * static_cast<int>(run.carCount())), busiest_ms,
         most_tested, busiest_ground, run.model(0).body.positions_m.size(), most_projected);
+    // The ground is tested only as far as the points moved down: after the frontal crash's sag of a few
+    // centimetres, not the half of the body within the front's 0.5 m motion of it (10,017 vertex tests
+    // in the busiest frame before).
+    if (name == "wall_crash") CHECK(busiest_ground < run.model(0).body.positions_m.size() / 20);
     CHECK(before_m > 0.01);  // the skin alone does leave vertices inside: the projection had work
     CHECK(most_projected > 0);
     CHECK(after_m <= 1e-5);  // within the 1 cm asked; what the projection leaves is float rounding

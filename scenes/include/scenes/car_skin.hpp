@@ -83,6 +83,9 @@ class CarSkin {
   deform::VertexGrid grid_;          ///< rest positions, for the vertices near an obstacle
   Eigen::Vector3d interior_m_;       ///< middle of the rest bounding box [m]
   double displacement_gain_ = 1;     ///< largest sum of |weights| of a vertex: |v - v0| <= gain max |d_i|
+  bool nonnegative_weights_ = true;  ///< every weight >= 0 (idw): a vertex moves within its points' hull
+  /// How far along the unit `into` any vertex can have moved: the reach of a half-space's test [m].
+  double reachAlong_m(const std::vector<Eigen::Vector3d>& displacements_m, const Eigen::Vector3d& into) const;
   std::vector<uint32_t> projected_;  ///< vertices off the skin's position (on an obstacle's surface)
   std::vector<Eigen::Vector3f> projected_from_m_;  ///< their skin positions [m]
   std::vector<uint8_t> is_projected_;              ///< one flag per vertex, for projected_
