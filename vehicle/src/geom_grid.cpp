@@ -17,12 +17,24 @@ bool bounded(const std::array<dReal, 6>& b) {
 
 }  // namespace
 
+namespace {
+
+/// The cell of coordinate t (in cells from the grid's corner) among `count`, clamped; NaN and the
+/// infinities too, which a cast to int would leave undefined.
+int cellOf(double t, int count) {
+  if (!(t >= 1)) return 0;
+  if (!(t < count)) return count - 1;
+  return static_cast<int>(t);
+}
+
+}  // namespace
+
 int GeomGrid::cellX(double x_m) const {
-  return std::clamp(static_cast<int>(std::floor((x_m - x0_m_) / cell_m_)), 0, nx_ - 1);
+  return cellOf((x_m - x0_m_) / cell_m_, nx_);
 }
 
 int GeomGrid::cellY(double y_m) const {
-  return std::clamp(static_cast<int>(std::floor((y_m - y0_m_) / cell_m_)), 0, ny_ - 1);
+  return cellOf((y_m - y0_m_) / cell_m_, ny_);
 }
 
 void GeomGrid::build(dSpaceID space) {
