@@ -1,6 +1,7 @@
 // The grid that finds the wheels' ray candidates and the collision pass's pairs (vehicle/src/geom_grid.hpp)
 // against the brute force it replaced: every pair of boxes, every box against the ray's.
 #include "geom_grid.hpp"
+#include "broad_phase.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -61,4 +62,33 @@ TEST_CASE("Geom grid: its pairs and ray candidates are the brute force's, in the
       if (overlap(grid.box(i), ray)) CHECK(std::binary_search(candidates.begin(), candidates.end(), i));
   }
   dSpaceDestroy(space);
+}
+
+TEST_CASE("Box grid: the boxes near one hold every box overlapping it, in ascending order") {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> place(-200.0, 200.0), size(0.5, 6.0);
+  std::vector<vehicle::Box> boxes;
+  for (int k = 0; k < 400; ++k) {  // cars in a town, and a few long trains of them
+    const Eigen::Vector3d lo(place(random), place(random), 0.0);
+    const double length = k % 40 == 0 ? 60.0 : size(random);
+    boxes.push_back({lo, lo + Eigen::Vector3d(length, size(random), 1.5)});
+  }
+  vehicle::BoxGrid grid;
+  grid.build(boxes, 8.0);
+  std::vector<uint32_t> near;
+  std::size_t overlapping = 0, found = 0;
+  for (int q = 0; q < 400; ++q) {
+    const vehicle::Box query = boxes[static_cast<std::size_t>(q)].grown(0.5 + 0.01 * q);
+    grid.near(query, near);
+    CHECK(std::is_sorted(near.begin(), near.end()));
+    CHECK(std::adjacent_find(near.begin(), near.end()) == near.end());
+    found += near.size();
+    for (uint32_t i = 0; i < boxes.size(); ++i)
+      if (query.overlaps(boxes[i])) {
+        ++overlapping;
+        CHECK(std::binary_search(near.begin(), near.end(), i));
+      }
+  }
+  CHECK(overlapping >= 400);      // each query holds its own box at least
+  CHECK(found < 400 * 400 / 10);  // and the grid kept the rest out
 }

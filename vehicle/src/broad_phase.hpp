@@ -4,6 +4,7 @@
 #include <vehicle/obstacle_shape.hpp>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace vehicle {
@@ -17,6 +18,21 @@ struct Box {
   Box grown(double grow_m) const { return {min_m.array() - grow_m, max_m.array() + grow_m}; }
   /// Half the diagonal [m].
   double halfDiagonal_m() const { return 0.5 * (max_m - min_m).norm(); }
+};
+
+/// Boxes bucketed by their x-y extent on a uniform grid (cells at least `cell_min_m` wide, at most 256 a
+/// side): the boxes that may come within reach of one, in ascending index, without testing all of them.
+class BoxGrid {
+ public:
+  void build(const std::vector<Box>& boxes, double cell_min_m);
+  /// Every box whose cells meet those of `box` (a superset of the boxes overlapping it), ascending.
+  void near(const Box& box, std::vector<uint32_t>& out) const;
+
+ private:
+  double x0_m_ = 0, y0_m_ = 0, cell_m_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<uint32_t> start_, items_;  ///< cell c holds items_[start_[c] .. start_[c + 1])
+  int cell(double t, int count) const;
 };
 
 /// The box around `points_m` (not empty).

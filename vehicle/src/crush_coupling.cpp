@@ -55,7 +55,26 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
     if (crushable(world, other))
       consider(other, obstacle_boxes[o], velocityOf(other, core_world_m), angularVelocityOf(other));
   }
-  for (CarId c = 0; c < world.carCount(); ++c) {  // velocityOf(car, core) and its turn, from car_motion
+  // Another car is within reach only if its box comes within the growth below of this one's. That growth
+  // is at most C + w dt L, with w the fastest turn and L the distance from this core to the other's
+  // centre, itself at most sqrt(3) times the boxes' gap plus two half-diagonals: so only boxes within
+  // r = (C + 2 w dt R) / (1 - sqrt(3) w dt) can be, and only those are tested (the same cars, in the same
+  // order, as testing all of them; all of them when the turn is too fast for the bound).
+  const double dt = world.fixedDt_s();
+  const double turn = std::sqrt(3.0) * fastest_turn_radps * dt;
+  std::vector<uint32_t> candidates;
+  if (turn < 0.5) {
+    const double c_m =
+        (fastest_car_mps + self_mps.norm() +
+         (fastest_turn_radps + self_radps.norm()) * mine.halfDiagonal_m() + fastest_point_mps) *
+            dt +
+        kApproachMargin_m;
+    const double reach_m = (c_m + 2.0 * fastest_turn_radps * dt * largest_half_diagonal_m) / (1.0 - turn);
+    car_grid.near(mine.grown(1.01 * reach_m + 1e-6), candidates);
+  } else {
+    for (CarId c = 0; c < world.carCount(); ++c) candidates.push_back(c);
+  }
+  for (const uint32_t c : candidates) {  // velocityOf(car, core) and its turn, from car_motion
     if (c == dc.id) continue;
     const CarMotion& m = car_motion[c];
     consider({EntityRef::Kind::Car, c}, car_boxes[c],

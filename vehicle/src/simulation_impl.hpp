@@ -117,6 +117,11 @@ struct Simulation::Impl {
   /// per CarId its control points (a deformable car) or hull, per ObstacleId its shape (the ground's is
   /// left empty: a half-space has no box).
   std::vector<Box> car_boxes, obstacle_boxes;
+  /// car_boxes by place, and the fastest car, the fastest turn and the largest half-diagonal among them
+  /// this step: what bounds how far another car can be and still come within a car's reach
+  /// (addApproaching) [m/s], [rad/s], [m].
+  BoxGrid car_grid;
+  double fastest_car_mps = 0, fastest_turn_radps = 0, largest_half_diagonal_m = 0;
   void updateBoxes();
   /// Per car (index into cars): nothing near it this step (simulation_step.cpp's broad phase: boxes of
   /// the control points and obstacles grown by the step's travel; any contact but the ground's counts).

@@ -66,6 +66,13 @@ void Simulation::Impl::updateBoxes() {
     const Eigen::Vector3d centre = world.car(c).bodyPose().position_m;
     car_boxes[c] = points.empty() ? Box{centre, centre} : boxOf(points);
   }
+  car_grid.build(car_boxes, 8.0);
+  fastest_car_mps = fastest_turn_radps = largest_half_diagonal_m = 0;
+  for (CarId c = 0; c < world.carCount(); ++c) {
+    fastest_car_mps = std::max(fastest_car_mps, car_motion[c].velocity_mps.norm());
+    fastest_turn_radps = std::max(fastest_turn_radps, car_motion[c].omega_radps.norm());
+    largest_half_diagonal_m = std::max(largest_half_diagonal_m, car_boxes[c].halfDiagonal_m());
+  }
   obstacle_boxes.assign(world.obstacleCount(), Box{});
   for (ObstacleId o = 0; o < world.obstacleCount(); ++o)
     if (world.obstacleKind(o) != ObstacleKind::Ground) obstacle_boxes[o] = boxOf(world.obstacleShape(o));
