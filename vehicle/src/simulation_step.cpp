@@ -97,10 +97,17 @@ std::vector<uint8_t> Simulation::Impl::idleCars() const {
     obstacle_grown.push_back(obstacle_boxes[o].grown(grow_m));
   }
   std::vector<uint8_t> idle(cars.size(), 1);
+  BoxGrid grid;  // the boxes that overlap share a cell: each car tests its cells' boxes, not every car's
+  grid.build(grown_cars, 8.0);
+  std::vector<uint32_t> near;
   for (std::size_t i = 0; i < cars.size(); ++i) {
     const Box& mine = grown_cars[cars[i]->id];
-    for (CarId c = 0; c < grown_cars.size() && idle[i]; ++c)
-      if (c != cars[i]->id && mine.overlaps(grown_cars[c])) idle[i] = 0;
+    grid.near(mine, near);
+    for (const uint32_t c : near)
+      if (c != cars[i]->id && mine.overlaps(grown_cars[c])) {
+        idle[i] = 0;
+        break;
+      }
     for (const Box& b : obstacle_grown)
       if (idle[i] && mine.overlaps(b)) idle[i] = 0;
   }
