@@ -7,8 +7,8 @@
 
 namespace {
 
-void requireGroup(const std::string& group) {
-  const std::vector<sandbox::StressCase> cases = sandbox::runStressGroup(group, true);
+void requireGroup(const std::string& group, bool quick = true) {
+  const std::vector<sandbox::StressCase> cases = sandbox::runStressGroup(group, quick);
   REQUIRE_FALSE(cases.empty());
   for (const sandbox::StressCase& c : cases) {
     INFO(c.group << " / " << c.name << ": checks " << c.checks << "\n  measured: " << c.detail);
@@ -48,4 +48,10 @@ TEST_CASE("extreme: repeated impacts in the same spot", "[extreme]") {
 
 TEST_CASE("stress: an unknown group is refused", "[extreme]") {
   CHECK_THROWS_AS(sandbox::runStressGroup("nonsense", true), std::invalid_argument);
+}
+TEST_CASE("soak: 1e5 steps with 50 impacts into the same spot, the same hash twice, memory flat",
+          "[extreme]") {
+  // The full group, not the quick one: 50 impacts, then braked to 100,000 steps at 500 Hz (200 s
+  // simulated), run twice (8 s here).
+  requireGroup("repeated_impacts", false);
 }

@@ -95,16 +95,24 @@ std::vector<StressCase> longRunCases(bool quick) {
   return {c};
 }
 
-std::vector<StressCase> repeatedImpactCases(bool quick) {
-  const int impacts_wanted = quick ? 10 : 50;
+namespace {
+
+/// One run of the repeated impacts: wall_crash's car driven into the wall `impacts_wanted` times, then held
+/// on its brakes until `min_steps` steps have run.
+struct ImpactRun {
+  int impacts = 0;
+  bool stuck = false;
+  std::size_t steps = 0;
+  std::vector<double> crush_after_m;         // residual crush after each impact
+  std::vector<double> resident_after_bytes;  // this process's resident memory then (a leak grows it)
+  uint64_t state_hash = 0;
+  RunVerdict verdict;
+  double simulated_s = 0;
+};
+
+ImpactRun runImpacts(int impacts_wanted, std::size_t min_steps) {
   constexpr double kImpactSpeed_mps = 15 / 3.6;
-  const auto start = Clock::now();
-  StressCase c{
-      "repeated_impacts",
-      std::to_string(impacts_wanted) + " impacts at 15 km/h into the same spot of the wall",
-      "every run check; each impact happened; the dent saturates (the last fifth of the impacts adds "
-      "less than the first fifth); resident memory flat (under 4 MB more after the last impact than "
-      "after the first fifth); the car still drives away"};
+  ImpactRun out;
   // wall_crash's car and wall, the car starting at rest: the loop below drives it.
   scenes::SceneRun run(
       scenes::loadScene("wall_crash", {scenes::parseOverride("vehicle.start.speed_kmh=0"),
@@ -114,12 +122,8 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
   const double start_x_m = car.vehiclePose().position_m.x();
   enum class Phase { Forward, Reverse, Stop } phase = Phase::Forward;
   bool up_to_speed = false;
-  int impacts = 0;
-  std::vector<double> crush_after_m;         // residual crush after each impact
-  std::vector<double> resident_after_bytes;  // this process's resident memory then (a leak grows it)
   double phase_started_s = 0;
-  bool stuck = false;
-  while (impacts < impacts_wanted && !stuck) {
+  while (out.impacts < impacts_wanted && !out.stuck) {
     const double speed_mps = car.forwardSpeed_mps();
     const double x_m = car.vehiclePose().position_m.x();
     vehicle::DriverInput input;
@@ -128,7 +132,7 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
         input.throttle = std::clamp(0.6 * (kImpactSpeed_mps - speed_mps), 0.0, 1.0);
         up_to_speed = up_to_speed || speed_mps > 0.8 * kImpactSpeed_mps;
         if (up_to_speed && speed_mps < 0.2 * kImpactSpeed_mps) {  // the wall stopped it
-          ++impacts;
+          ++out.impacts;
           phase = Phase::Reverse;
           phase_started_s = simulation.world().time_s();
         }
@@ -141,8 +145,8 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
       case Phase::Stop:
         input.brake = 1.0;
         if (std::abs(speed_mps) < 0.05) {
-          crush_after_m.push_back(simulation.metrics(run.carId(0)).residual_crush_m);
-          resident_after_bytes.push_back(residentBytes());
+          out.crush_after_m.push_back(simulation.metrics(run.carId(0)).residual_crush_m);
+          out.resident_after_bytes.push_back(residentBytes());
           phase = Phase::Forward;
           up_to_speed = false;
           phase_started_s = simulation.world().time_s();
@@ -151,18 +155,44 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
     }
     car.setInput(input);
     simulation.step();
-    stuck = simulation.world().time_s() - phase_started_s > 20.0;
+    ++out.steps;
+    out.stuck = simulation.world().time_s() - phase_started_s > 20.0;
   }
-  // Let the last impact finish before measuring it.
-  for (int k = 0; k < 500 && !stuck; ++k) {
+  // Let the last impact finish before measuring it, and run on (braked) to the soak's length.
+  for (std::size_t k = 0; (k < 500 || out.steps < min_steps) && !out.stuck; ++k) {
     vehicle::DriverInput brake;
     brake.brake = 1.0;
     car.setInput(brake);
     simulation.step();
+    ++out.steps;
+    if (k == 499) out.crush_after_m.push_back(simulation.metrics(run.carId(0)).residual_crush_m);
   }
-  crush_after_m.push_back(simulation.metrics(run.carId(0)).residual_crush_m);
-  RunVerdict verdict = checkRun(run);
-  if (stuck) verdict.fail("no progress for 20 s after impact " + std::to_string(impacts));
+  out.verdict = checkRun(run);
+  out.state_hash = simulation.stateHash();
+  out.simulated_s = simulation.world().time_s();
+  return out;
+}
+
+}  // namespace
+
+std::vector<StressCase> repeatedImpactCases(bool quick) {
+  const int impacts_wanted = quick ? 10 : 50;
+  const std::size_t min_steps = quick ? 0 : 100000;
+  const auto start = Clock::now();
+  StressCase c{
+      "repeated_impacts",
+      std::to_string(impacts_wanted) + " impacts at 15 km/h into the same spot of the wall" +
+          (quick ? std::string() : ", then braked to " + std::to_string(min_steps) + " steps in all") +
+          ", run twice",
+      "every run check; each impact happened; the dent saturates (the last fifth of the impacts adds "
+      "less than the first fifth); resident memory flat (under 4 MB more after the last impact than "
+      "after the first fifth); the same state hash twice"};
+  const ImpactRun first = runImpacts(impacts_wanted, min_steps);
+  const ImpactRun second = runImpacts(impacts_wanted, min_steps);
+  RunVerdict verdict = first.verdict;
+  if (first.stuck) verdict.fail("no progress for 20 s after impact " + std::to_string(first.impacts));
+  if (second.state_hash != first.state_hash) verdict.fail("hash differs between runs");
+  const std::vector<double>& crush_after_m = first.crush_after_m;
   const std::size_t fifth = std::max<std::size_t>(crush_after_m.size() / 5, 1);
   double first_fifth_m = 0, last_fifth_m = 0;
   if (crush_after_m.size() >= 2 * fifth + 1) {
@@ -175,21 +205,24 @@ std::vector<StressCase> repeatedImpactCases(bool quick) {
   // Not under AddressSanitizer: its quarantine keeps freed memory resident (+92 MB over these impacts),
   // and LeakSanitizer checks leaks in that build instead.
   double resident_growth_bytes = 0;
-  if (resident_after_bytes.size() > fifth) {
-    resident_growth_bytes = resident_after_bytes.back() - resident_after_bytes[fifth - 1];
+  const std::vector<double>& resident = first.resident_after_bytes;
+  if (resident.size() > fifth) {
+    resident_growth_bytes = resident.back() - resident[fifth - 1];
     if (!kAddressSanitizer && !(resident_growth_bytes < 4e6))
       verdict.fail("resident memory grows with the impacts");
   }
-  char figures[320];
+  char figures[360];
   std::snprintf(
       figures, sizeof figures,
-      "%d impacts in %.0f s simulated; crush %.3f m after the first, %.3f m after the last; first fifth "
-      "added %.3f m, last fifth %.3f m; resident memory %+.2f MB from the first fifth to the last impact",
-      impacts, simulation.world().time_s(), crush_after_m.empty() ? 0.0 : crush_after_m.front(),
+      "%d impacts, %zu steps, %.0f s simulated; crush %.3f m after the first, %.3f m after the last; first "
+      "fifth added %.3f m, last fifth %.3f m; resident memory %+.2f MB from the first fifth to the last "
+      "impact; hash %016llx both runs: %s",
+      first.impacts, first.steps, first.simulated_s, crush_after_m.empty() ? 0.0 : crush_after_m.front(),
       crush_after_m.empty() ? 0.0 : crush_after_m.back(), first_fifth_m, last_fifth_m,
-      1e-6 * resident_growth_bytes);
+      1e-6 * resident_growth_bytes, static_cast<unsigned long long>(first.state_hash),
+      second.state_hash == first.state_hash ? "yes" : "no");
   verdict.figures = figures + std::string("; ") + verdict.figures;
-  c.passed = verdict.ok && impacts == impacts_wanted;
+  c.passed = verdict.ok && first.impacts == impacts_wanted;
   c.detail = verdict.text();
   c.seconds = secondsSince(start);
   return {c};
