@@ -59,6 +59,16 @@ void BoxGrid::near(const Box& box, std::vector<uint32_t>& out) const {
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
+void BoxGrid::pairs(std::vector<uint64_t>& out) const {
+  out.clear();
+  for (std::size_t c = 0; c + 1 < start_.size(); ++c)
+    for (uint32_t p = start_[c]; p < start_[c + 1]; ++p)
+      for (uint32_t q = p + 1; q < start_[c + 1]; ++q)  // a cell's items are ascending
+        out.push_back(uint64_t{items_[p]} << 32 | items_[q]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 Box boxOf(const std::vector<Eigen::Vector3d>& points_m) {
   Box box{points_m.front(), points_m.front()};
   for (const Eigen::Vector3d& p : points_m) {

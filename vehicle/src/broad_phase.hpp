@@ -27,6 +27,9 @@ class BoxGrid {
   void build(const std::vector<Box>& boxes, double cell_min_m);
   /// Every box whose cells meet those of `box` (a superset of the boxes overlapping it), ascending.
   void near(const Box& box, std::vector<uint32_t>& out) const;
+  /// Every pair (i < j) of boxes that share a cell (a superset of the pairs that overlap), as
+  /// i << 32 | j, ascending.
+  void pairs(std::vector<uint64_t>& out) const;
 
  private:
   double x0_m_ = 0, y0_m_ = 0, cell_m_ = 1;

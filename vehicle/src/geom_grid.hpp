@@ -6,6 +6,8 @@
 // geom's box, half of the step's time, and ODE's simple space every pair of boxes, a sixth of it
 // (docs/BENCHMARKS.md, "Many cars"). Both come out in the space's order, so the results are the same to
 // the bit.
+#include "broad_phase.hpp"
+
 #include <ode/ode.h>
 
 #include <Eigen/Core>
@@ -17,13 +19,13 @@ namespace vehicle::ode {
 
 class GeomGrid {
  public:
-  /// Buckets every geom of `space` (planes, and geoms whose box is unbounded or spans too many cells,
-  /// are candidates everywhere).
+  /// Buckets every geom of `space` by its box (vehicle::BoxGrid); planes and geoms with an unbounded box
+  /// are candidates everywhere.
   void build(dSpaceID space);
   /// The geoms whose boxes may meet the box [lo, hi], in the space's order (ascending index), each once.
   void candidates(const Eigen::Vector3d& lo_m, const Eigen::Vector3d& hi_m, std::vector<int>& out) const;
-  /// Every pair (i < j) of geoms that share a cell, or of which one is everywhere, ascending in (i, j):
-  /// the order ODE's simple space meets them in.
+  /// Every pair (i < j) of geoms that share a cell, or of which one is everywhere, as i << 32 | j,
+  /// ascending in (i, j): the order ODE's simple space meets them in.
   void pairs(std::vector<uint64_t>& out) const;
   dGeomID geom(int index) const { return geoms_[static_cast<std::size_t>(index)]; }
   /// The box ODE gave geom `index` when the grid was built: min x, max x, min y, max y, min z, max z.
@@ -32,12 +34,10 @@ class GeomGrid {
  private:
   std::vector<dGeomID> geoms_;
   std::vector<std::array<dReal, 6>> boxes_;
-  std::vector<int> everywhere_;
-  double x0_m_ = 0, y0_m_ = 0, cell_m_ = 4.0;
-  int nx_ = 0, ny_ = 0;
-  std::vector<int> cell_start_, cell_items_;  ///< cell c holds cell_items_[cell_start_[c] .. [c + 1])
-  int cellX(double x_m) const;
-  int cellY(double y_m) const;
+  std::vector<int> everywhere_;  ///< ascending
+  std::vector<int> bucketed_;    ///< the grid's item k is geom bucketed_[k] (ascending)
+  BoxGrid grid_;
+  mutable std::vector<uint32_t> scratch_;
 };
 
 }  // namespace vehicle::ode
