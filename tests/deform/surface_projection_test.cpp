@@ -49,7 +49,7 @@ void requireProjectedOnto(const deform::ContactShape& shape, const Eigen::Vector
 
 }  // namespace
 
-TEST_CASE("vertices inside a box, a post and a convex hull are projected onto the surface",
+TEST_CASE("vertices inside a box, a post, a bollard and a convex hull are projected onto the surface",
           "[surface_projection]") {
   const Eigen::Vector3d interior(-3.0, 0.2, 0.5);  // the car's middle, outside the obstacles
   SECTION("box (a wall), turned") {
@@ -62,6 +62,11 @@ TEST_CASE("vertices inside a box, a post and a convex hull are projected onto th
   SECTION("capsule (a post or a tree)") {
     const deform::CapsuleShape post{{0.2, 0.0, -1.0}, {0.2, 0.0, 2.0}, 0.15};
     requireProjectedOnto(post, interior, {0.2, 0.0, 0.5}, 0.3);
+  }
+  SECTION("cylinder with flat ends (a bollard, as the scenes' posts are met)") {
+    const deform::CylinderShape bollard{{0.2, 0.0, -1.0}, {0.2, 0.0, 0.9}, 0.12, Eigen::Vector3d::Zero()};
+    requireProjectedOnto(bollard, interior, {0.2, 0.0, 0.5}, 0.3);
+    requireProjectedOnto(bollard, interior, {0.2, 0.0, 0.85}, 0.3);  // about its flat top
   }
   SECTION("convex hull (another car's corner)") {
     const deform::ConvexPoints hull({{0.0, -0.5, 0.2},
