@@ -1,9 +1,13 @@
 // front_profile: the front-most x per slice across the width, and its spread over the middle of it.
+#include <figures/dented_car.hpp>
 #include <figures/front_profile.hpp>
+#include <scenes/scene_file.hpp>
+#include <scenes/scene_run.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 TEST_CASE("front profile: a flat front has no spread, a pointed nose spreads by its slope",
           "[figures][front_profile]") {
@@ -26,4 +30,25 @@ TEST_CASE("front profile: a flat front has no spread, a pointed nose spreads by 
   // vertex sits at |y| = 0.70-0.71 m (0.35-0.355 m back); the middle slice reaches x = 2 (y = 0).
   const auto nose_profile = sandbox::figures::frontProfile(nose, box);
   CHECK(nose_profile.variation_m == Approx(0.35).margin(0.006));
+}
+
+TEST_CASE("front profile after the 56 km/h wall crash: mls within the 5 cm asked, idw measured",
+          "[figures][front_profile]") {
+  // The issue's target for the crushed front: the front-most vertex across the middle 80 % of the width
+  // varies by 5 cm or less once the car is at rest. The car before the crash varies by 6.3 cm (its
+  // rounded nose). Measured: mls 1.7-1.8 cm, idw 8.1 cm (its lobes between the control points: the
+  // default skin does not meet the target yet).
+  scenes::SceneRun run(scenes::loadScene("wall_crash", {}));
+  run.runToEnd();
+  const auto idw = sandbox::figures::dentCar(run, deform::SkinMethod::idw);
+  const auto mls = sandbox::figures::dentCar(run, deform::SkinMethod::mls);
+  const deform::Aabb box = deform::boundingBox(idw.model.body);
+  const double idw_m = sandbox::figures::frontProfile(idw.dented.positions_m, box).variation_m;
+  const double mls_m = sandbox::figures::frontProfile(mls.dented.positions_m, box).variation_m;
+  const double rest_m = sandbox::figures::frontProfile(idw.model.body.positions_m, box).variation_m;
+  std::printf("[figure] front profile after wall_crash: idw %.4f m, mls %.4f m, at rest %.4f m\n", idw_m,
+              mls_m, rest_m);
+  CHECK(mls_m <= 0.05);
+  CHECK(mls_m < idw_m);
+  CHECK(rest_m > 0.05);  // the measure sees a rounded nose: a flat front is the crash's doing
 }
