@@ -255,7 +255,6 @@ ObstacleShape Car::shape() const {
 }
 
 void Car::applyForces(double dt_s, const ode::GeomGrid& geoms) {
-  std::vector<int> ray_candidates;
   const Pose body = bodyPose();
   const Eigen::Matrix3d rotation = body.orientation.toRotationMatrix();
   const Eigen::Vector3d down = -rotation.col(2);
@@ -298,7 +297,7 @@ void Car::applyForces(double dt_s, const ode::GeomGrid& geoms) {
 
     const double reach = w.suspension_length_m + w.radius_m;
     const ode::RayHit hit =
-        ode::castRay(geoms, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_, ray_candidates);
+        ode::castRay(geoms, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_, ray_candidates_);
     Eigen::Vector3d forward = Eigen::Vector3d::Zero(), left = Eigen::Vector3d::Zero();
     s.in_contact = hit.hit;
     if (hit.hit) {

@@ -51,11 +51,10 @@ void GeomGrid::candidates(const Eigen::Vector3d& lo_m, const Eigen::Vector3d& hi
   std::inplace_merge(out.begin(), out.begin() + middle, out.end());
 }
 
-void GeomGrid::pairs(std::vector<uint64_t>& out) const {
-  std::vector<uint64_t> local;
-  grid_.pairs(local);
+void GeomGrid::pairs(std::vector<uint64_t>& out) {
+  grid_.pairs(grid_pairs_);
   out.clear();
-  for (const uint64_t p : local)  // grid items to geoms: both ascending, so still i < j
+  for (const uint64_t p : grid_pairs_)  // grid items to geoms: both ascending, so still i < j
     out.push_back(uint64_t(static_cast<uint32_t>(bucketed_[p >> 32])) << 32 |
                   static_cast<uint32_t>(bucketed_[p & 0xffffffffu]));
   auto key = [](int a, int b) {

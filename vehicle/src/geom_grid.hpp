@@ -26,7 +26,7 @@ class GeomGrid {
   void candidates(const Eigen::Vector3d& lo_m, const Eigen::Vector3d& hi_m, std::vector<int>& out) const;
   /// Every pair (i < j) of geoms that share a cell, or of which one is everywhere, as i << 32 | j,
   /// ascending in (i, j): the order ODE's simple space meets them in.
-  void pairs(std::vector<uint64_t>& out) const;
+  void pairs(std::vector<uint64_t>& out);
   dGeomID geom(int index) const { return geoms_[static_cast<std::size_t>(index)]; }
   /// The box ODE gave geom `index` when the grid was built: min x, max x, min y, max y, min z, max z.
   const std::array<dReal, 6>& box(int index) const { return boxes_[static_cast<std::size_t>(index)]; }
@@ -38,6 +38,12 @@ class GeomGrid {
   std::vector<int> bucketed_;    ///< the grid's item k is geom bucketed_[k] (ascending)
   BoxGrid grid_;
   mutable std::vector<uint32_t> scratch_;
+  std::vector<uint64_t> grid_pairs_;
 };
+
+/// Whether two boxes as ODE gives them (min x, max x, min y, max y, min z, max z) meet.
+inline bool boxesMeet(const std::array<dReal, 6>& a, const std::array<dReal, 6>& b) {
+  return !(a[0] > b[1] || a[1] < b[0] || a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4]);
+}
 
 }  // namespace vehicle::ode

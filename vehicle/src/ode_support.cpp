@@ -29,15 +29,13 @@ RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin
   dGeomRaySet(ray, origin_m.x(), origin_m.y(), origin_m.z(), direction.x(), direction.y(), direction.z());
   const Eigen::Vector3d end = origin_m + length_m * direction;
   const Eigen::Vector3d lo = origin_m.cwiseMin(end), hi = origin_m.cwiseMax(end);
+  const std::array<dReal, 6> ray_box{lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()};
   RayHit best;
   geoms.candidates(lo, hi, scratch);
   for (const int i : scratch) {  // ascending, as the space holds them: ties go as they always went
     dGeomID geom = geoms.geom(i);
     if (ignore != nullptr && dGeomGetBody(geom) == ignore) continue;
-    const auto& box = geoms.box(i);
-    if (box[0] > hi.x() || box[1] < lo.x() || box[2] > hi.y() || box[3] < lo.y() || box[4] > hi.z() ||
-        box[5] < lo.z())
-      continue;
+    if (!boxesMeet(geoms.box(i), ray_box)) continue;
     dContactGeom contact;
     if (dCollide(ray, geom, 1, &contact, sizeof(dContactGeom)) < 1) continue;
     if (best.hit && !(contact.depth < best.distance_m)) continue;

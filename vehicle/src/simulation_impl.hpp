@@ -13,6 +13,7 @@
 #include <deform/body_state.hpp>
 #include <deform/deformable_body.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -144,9 +145,13 @@ struct Simulation::Impl {
     Eigen::Vector3d velocity_mps{0, 0, 0}, omega_radps{0, 0, 0}, com_m{0, 0, 0};
   };
   std::vector<CarMotion> car_motion;
+  /// Also raises fastest_car_mps and fastest_turn_radps when finishCar speeds a car up, so that the
+  /// bound addApproaching takes from them holds for the cars stepped after it.
   void refreshMotion(CarId c) {
     const Car& car = world.car(c);
     car_motion[c] = {car.velocity_mps(), car.angularVelocity_rad_s(), car.bodyPose().position_m};
+    fastest_car_mps = std::max(fastest_car_mps, car_motion[c].velocity_mps.norm());
+    fastest_turn_radps = std::max(fastest_turn_radps, car_motion[c].omega_radps.norm());
   }
   std::vector<Eigen::Vector3d> car_velocity_before;  ///< per CarId: velocity before this step [m/s]
   Eigen::Vector3d velocityBefore(EntityRef e) const {

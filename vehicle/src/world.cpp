@@ -631,9 +631,7 @@ void World::step() {
     if (!dGeomIsEnabled(g1) || !dGeomIsEnabled(g2)) continue;
     dBodyID b1 = dGeomGetBody(g1);
     if (b1 != nullptr && b1 == dGeomGetBody(g2)) continue;
-    const auto &a = m.geom_grid.box(i), &b = m.geom_grid.box(j);
-    if (a[0] > b[1] || a[1] < b[0] || a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4]) continue;
-    Impl::nearCallback(&m, g1, g2);
+    if (ode::boxesMeet(m.geom_grid.box(i), m.geom_grid.box(j))) Impl::nearCallback(&m, g1, g2);
   }
   const auto t2 = Clock::now();
   // ODE's quick step shuffles constraints with one global random seed: give it this world's own.

@@ -146,6 +146,7 @@ class Car {
   dxSpace* space_ = nullptr;
   dxBody* body_ = nullptr;
   dxGeom* ray_ = nullptr;
+  std::vector<int> ray_candidates_;  ///< scratch of applyForces: the geoms near a wheel's ray
   std::unique_ptr<ConvexGeom> convex_;
   std::vector<std::unique_ptr<ConvexGeom>> core_;  ///< crush backstop geoms (none: no backstop)
 };
