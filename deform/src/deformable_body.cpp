@@ -85,6 +85,18 @@ bool DeformableBody::loadChanged() const {
 }
 
 StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
+  if (beginStep(inputs, dt_s, false)) {
+    for (uint32_t k = 1; k <= params_.substeps; ++k) {
+      beginSubstep(k);
+      for (uint32_t it = 0; it < params_.iterations; ++it) iterate();
+      settleSubstep();
+      endSubstep();
+    }
+  }
+  return endStep();
+}
+
+bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touched) {
   if (!std::isfinite(dt_s) || dt_s <= 0)
     throw InputError("dt_s: time step must be finite and > 0 (got " + std::to_string(dt_s) + " s)");
   const BodySettings& settings = *settings_;
@@ -114,17 +126,19 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   load_mps2_ = chassis.gravity_mps2 - chassis.acceleration_mps2;
   omega_radps_ = chassis.angular_velocity_radps;
   alpha_radps2_ = chassis.angular_acceleration_radps2;
+  inputs_ = &inputs;
+  dt_s_ = dt_s;
 
-  StepReport report;
-  report.contact_impulse_per_obstacle_Ns.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  report_ = StepReport{};
+  report_.contact_impulse_per_obstacle_Ns.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
   bool load_changed = false;
   if (state_.sleeping) {
     load_changed = loadChanged();
-    if (inputs.contacts.empty() && inputs.impulses.empty() && !load_changed) {
-      report.asleep = true;
+    if (inputs.contacts.empty() && inputs.impulses.empty() && !load_changed && !touched) {
+      report_.asleep = true;
       state_.time_s += dt_s;
-      rigidShellLoad(dt_s, inputs.core_mass_kg, report);
-      return report;
+      rigidShellLoad(dt_s, inputs.core_mass_kg, report_);
+      return false;
     }
     state_.sleeping = false;
     rigid_moments_.valid = false;
@@ -137,13 +151,19 @@ StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   core_inverse_mass_per_kg_ = std::isfinite(inputs.core_mass_kg) ? 1.0 / inputs.core_mass_kg : 0.0;
   core_shift_m_.setZero();
   core_velocity_mps_.setZero();
-  const uint32_t substeps = params_.substeps;
-  const double h = dt_s / static_cast<double>(substeps);
-  for (uint32_t k = 1; k <= substeps; ++k) {
-    placeObstacles(inputs, static_cast<double>(substeps - k) * h);
-    substep(h, placed_, inputs, report);
-  }
-  last_substep_s_ = h;
+  h_s_ = dt_s / static_cast<double>(params_.substeps);
+  return true;
+}
+
+StepReport DeformableBody::endStep() {
+  const BodySettings& settings = *settings_;
+  const StepInputs& inputs = *inputs_;
+  StepReport report = std::move(report_);
+  report_ = StepReport{};
+  inputs_ = nullptr;
+  if (report.asleep) return report;
+  const double dt_s = dt_s_;
+  last_substep_s_ = h_s_;
   carried_elastic_J_ = -1;  // the multipliers changed
   state_.time_s += dt_s;
   // Re-centre on the core: positions and velocities stay relative to it; the caller moves its rigid body.
@@ -228,20 +248,23 @@ void DeformableBody::rigidShellLoad(double dt_s, double core_mass_kg, StepReport
                                               omega_radps_.cross(m.inertia_kgm2 * omega_radps_));
 }
 
-void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, const StepInputs& inputs,
-                             StepReport& report) {
+void DeformableBody::beginSubstep(uint32_t k) {
   const BodySettings& settings = *settings_;
+  const StepInputs& inputs = *inputs_;
+  StepReport& report = report_;
+  const double h = h_s_;
+  placeObstacles(inputs, static_cast<double>(params_.substeps - k) * h);
   const std::size_t n = settings.pointCount();
   auto& x = state_.positions_m;
   auto& v = state_.velocities_mps;
-  const auto& w = settings.inverse_mass_per_kg;
   const auto& m = settings.mass_kg;
   const double w_core = core_inverse_mass_per_kg_;
-  const double inv_h = 1.0 / h;
   // The core inside the substep: at core_m + shift, moving at core_velocity (relative to its kinematic
   // path). Every correction that ties a point to it pushes it back (momentum exchanged, `to_core`).
-  Eigen::Vector3d core = settings.core_m + core_shift_m_;
-  Eigen::Vector3d to_core_Ns{0, 0, 0};
+  sub_ = SubstepSums{};
+  Eigen::Vector3d& core = sub_.core;
+  core = settings.core_m + core_shift_m_;
+  Eigen::Vector3d& to_core_Ns = sub_.to_core_Ns;
 
   // Prediction: exact viscous decay of the motion relative to the core (its reaction on the core),
   // explicit velocity update with the inertial forces, then positions.
@@ -274,17 +297,44 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
     x[i] += travel;
   }
   core_velocity_mps_ += w_core * to_core_Ns;
-  const Eigen::Vector3d core_start = core;
+  sub_.core_start = core;
   core += h * core_velocity_mps_;
 
-  report.contact_points += findContacts(shapes, inputs, h);
+  report.contact_points += findContacts(placed_, inputs, h);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
   std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);
   std::fill(spoke_lambda_.begin(), spoke_lambda_.end(), 0.0);
   std::fill(column_lambda_.begin(), column_lambda_.end(), Eigen::Vector3d::Zero());
   std::fill(bend_lambda_.begin(), bend_lambda_.end(), 0.0);
+}
+
+void DeformableBody::movedBy(uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
+  // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
+  // impulse J = m dx / h against the obstacle's velocity relative to the core.
+  const BodySettings& settings = *settings_;
+  const double mi = settings.mass_kg[i];
+  sub_.contact_push += mi * dx;
+  report_.contact_impulse_per_obstacle_Ns[shape] += (mi * (1.0 / h_s_)) * dx;
+  const Eigen::Vector3d obstacle_mps = obstacleVelocity(*inputs_, shape, previous_m_[i]);
+  sub_.contact_work_x_h += mi * dx.dot(obstacle_mps - core_velocity_mps_);
+  sub_.obstacle_work_x_h += mi * dx.dot(obstacle_mps);
+  sub_.contact_moment_x_h += (previous_m_[i] - settings.core_m).cross(mi * dx);
+}
+
+// The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
+// unlimited sweep reads no yield arrays, so it costs what it did before they existed.
+template <bool kLimited>
+void DeformableBody::sweepConstraints() {
+  const BodySettings& settings = *settings_;
+  auto& x = state_.positions_m;
+  const auto& w = settings.inverse_mass_per_kg;
+  const auto& m = settings.mass_kg;
+  const double w_core = core_inverse_mass_per_kg_;
+  const double h = h_s_;
+  const double inv_h = 1.0 / h;
   const double inv_h2 = inv_h * inv_h;
+  const double h2 = h * h;
   const std::size_t edge_count = settings.edges.size(), spoke_count = settings.spokes.size(),
                     bend_count = settings.bends.size();
   const EdgeConstraint* edges = settings.edges.data();
@@ -296,148 +346,144 @@ void DeformableBody::substep(double h, const std::vector<ContactShape>& shapes, 
   const YieldForce* edge_yield = edge_yield_N_.data();
   const YieldForce* spoke_yield = spoke_yield_N_.data();
   const YieldForce* bend_yield = bend_yield_N_.data();
-  const double h2 = h * h;
   const Eigen::Vector3d* anchors = settings.spoke_anchor_m.data();
   const bool anchored = settings.anchored_columns;
   const Eigen::Vector3d* column_rest = state_.column_rest_m.data();
   const Eigen::Vector3d* normals = settings.spoke_normal.data();
   const YieldLimits* spoke_limits = settings.spoke_yield.data();
   const auto& laws = settings.plastic_laws;
-  // sum of lever x m_i dx_i, the lever a point on the line the correction acts along (a spoke's anchor, a
-  // column's rest place): the spokes' moment on the points
-  Eigen::Vector3d spoke_twist{0, 0, 0};
-  Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  // sum over spokes of m_i dx_i: the momentum x h they gave points
-  Eigen::Vector3d contact_push{0, 0, 0};   // sum of m_i dx_i by the obstacles
-  // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
-  // impulse J = m dx / h against the obstacle's velocity relative to the core.
-  double contact_work_x_h = 0, obstacle_work_x_h = 0;
-  Eigen::Vector3d contact_moment_x_h{0, 0, 0};
-  auto movedBy = [&](uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
-    contact_push += m[i] * dx;
-    report.contact_impulse_per_obstacle_Ns[shape] += (m[i] * inv_h) * dx;
-    const Eigen::Vector3d obstacle_mps = obstacleVelocity(inputs, shape, previous_m_[i]);
-    contact_work_x_h += m[i] * dx.dot(obstacle_mps - core_velocity_mps_);
-    obstacle_work_x_h += m[i] * dx.dot(obstacle_mps);
-    contact_moment_x_h += (previous_m_[i] - settings.core_m).cross(m[i] * dx);
-  };
-  // The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
-  // unlimited sweep reads no yield arrays, so it costs what it did before they existed.
-  auto sweepConstraints = [&](auto limited_tag) {
-    constexpr bool kLimited = decltype(limited_tag)::value;
-    for (std::size_t k = 0; k < edge_count; ++k) {
-      const EdgeConstraint& c = edges[k];
-      projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
-                      edge_lambda_[k], kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
-                      kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
-    }
-    // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
-    // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
-    // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
-    Eigen::Vector3d sweep_pull{0, 0, 0};
-    if (anchored) {  // crush columns, or spokes below
-      // Crush columns: each holds its point at its rest place, which moves with the core.
-      const Eigen::Vector3d shift = core - settings.core_m;
-      for (std::size_t k = 0; k < spoke_count; ++k) {
-        const SpokeConstraint& c = spokes[k];
-        const uint32_t i = c.point;
-        const Eigen::Vector3d before = x[i];
-        const Eigen::Vector3d& rest = column_rest[k];
-        const double alpha_tilde = c.compliance_m_per_N * inv_h2;
-        if constexpr (kLimited) {
-          const Eigen::Vector3d& original = settings.rest_positions_m[i];
-          const PlasticLaw& law = laws[c.material];
-          const double taken = law.hardening * (rest - original).norm();
-          const double to_lambda = h2 / c.compliance_m_per_N;
-          // Crushed to its clamp, a column can flow no further in: it bottoms out, rigidly elastic (as
-          // yieldForce for a spoke).
-          const bool bottomed = normals[k].dot(original - rest) >=
-                                (1.0 - law.min_rest_fraction) * settings.spoke_rest_m[k] * (1 - 1e-12);
-          projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k],
-                        [&](const Eigen::Vector3d& push) {
-                          // The column pushes along lambda: its point is displaced along -lambda.
-                          if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
-                          return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
-                        });
-        } else {
-          projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k], nullptr);
-        }
-        const Eigen::Vector3d pull = m[i] * (x[i] - before);
-        sweep_pull += pull;
-        spoke_twist += (rest - settings.core_m).cross(pull);
-      }
-    }
-    for (std::size_t k = 0; !anchored && k < spoke_count; ++k) {
+  Eigen::Vector3d& core = sub_.core;
+  Eigen::Vector3d& spoke_twist = sub_.spoke_twist;
+  for (std::size_t k = 0; k < edge_count; ++k) {
+    const EdgeConstraint& c = edges[k];
+    projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
+                    edge_lambda_[k], kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
+                    kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
+  }
+  // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
+  // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
+  // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
+  Eigen::Vector3d sweep_pull{0, 0, 0};
+  if (anchored) {  // crush columns, or spokes below
+    // Crush columns: each holds its point at its rest place, which moves with the core.
+    const Eigen::Vector3d shift = core - settings.core_m;
+    for (std::size_t k = 0; k < spoke_count; ++k) {
       const SpokeConstraint& c = spokes[k];
-      const Eigen::Vector3d before = x[c.point];
-      Eigen::Vector3d anchor = core + anchors[k];
-      projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
-                   spoke_lambda_[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
-                   kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
-      const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
-      sweep_pull += pull;
-      spoke_twist += anchors[k].cross(pull);
-    }
-    spoke_pull_Ns += sweep_pull;
-    core -= w_core * sweep_pull;
-    for (std::size_t k = 0; k < bend_count; ++k) {
-      const BendConstraint& c = bends[k];
-      projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k],
-                      c.compliance_m_per_N * inv_h2, bend_lambda_[k],
-                      kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
-                      kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
-    }
-  };
-  for (uint32_t it = 0; it < params_.iterations; ++it) {
-    if (params_.yield_limited)
-      sweepConstraints(std::true_type{});
-    else
-      sweepConstraints(std::false_type{});
-    for (ContactPoint& c : contacts_) {
-      const Eigen::Vector3d before = x[c.point];
-      // Friction holds the point to the obstacle's surface, which moves (and turns) in this frame.
-      projectContact(x[c.point], c.carried_start_m, c.normal, c.surface_m, inputs.contact_friction);
-      c.moved_m += x[c.point] - before;
-      movedBy(c.shape, c.point, x[c.point] - before);
-    }
-    for (FaceContact& c : face_contacts_) {
-      const auto& k = c.corners;
-      const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
-      const Eigen::Vector3d before[3] = {x[k[0]], x[k[1]], x[k[2]]};
-      projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
-      for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) {
-        c.moved_m[j] += x[k[j]] - before[j];
-        movedBy(c.shape, k[j], x[k[j]] - before[j]);
+      const uint32_t i = c.point;
+      const Eigen::Vector3d before = x[i];
+      const Eigen::Vector3d& rest = column_rest[k];
+      const double alpha_tilde = c.compliance_m_per_N * inv_h2;
+      if constexpr (kLimited) {
+        const Eigen::Vector3d& original = settings.rest_positions_m[i];
+        const PlasticLaw& law = laws[c.material];
+        const double taken = law.hardening * (rest - original).norm();
+        const double to_lambda = h2 / c.compliance_m_per_N;
+        // Crushed to its clamp, a column can flow no further in: it bottoms out, rigidly elastic (as
+        // yieldForce for a spoke).
+        const bool bottomed = normals[k].dot(original - rest) >=
+                              (1.0 - law.min_rest_fraction) * settings.spoke_rest_m[k] * (1 - 1e-12);
+        projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k],
+                      [&](const Eigen::Vector3d& push) {
+                        // The column pushes along lambda: its point is displaced along -lambda.
+                        if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
+                        return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
+                      });
+      } else {
+        projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k], nullptr);
       }
+      const Eigen::Vector3d pull = m[i] * (x[i] - before);
+      sweep_pull += pull;
+      spoke_twist += (rest - settings.core_m).cross(pull);
     }
   }
-  Eigen::Vector3d tie_push{0, 0, 0};  // sum of m_i dx_i by the shell orientation and visual constraints
+  for (std::size_t k = 0; !anchored && k < spoke_count; ++k) {
+    const SpokeConstraint& c = spokes[k];
+    const Eigen::Vector3d before = x[c.point];
+    Eigen::Vector3d anchor = core + anchors[k];
+    projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
+                 spoke_lambda_[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+                 kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
+    const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
+    sweep_pull += pull;
+    spoke_twist += anchors[k].cross(pull);
+  }
+  sub_.spoke_pull_Ns += sweep_pull;
+  core -= w_core * sweep_pull;
+  for (std::size_t k = 0; k < bend_count; ++k) {
+    const BendConstraint& c = bends[k];
+    projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k], c.compliance_m_per_N * inv_h2,
+                    bend_lambda_[k], kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
+                    kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
+  }
+}
 
+void DeformableBody::iterate() {
+  auto& x = state_.positions_m;
+  const auto& w = settings_->inverse_mass_per_kg;
+  if (params_.yield_limited)
+    sweepConstraints<true>();
+  else
+    sweepConstraints<false>();
+  for (ContactPoint& c : contacts_) {
+    const Eigen::Vector3d before = x[c.point];
+    // Friction holds the point to the obstacle's surface, which moves (and turns) in this frame.
+    projectContact(x[c.point], c.carried_start_m, c.normal, c.surface_m, inputs_->contact_friction);
+    c.moved_m += x[c.point] - before;
+    movedBy(c.shape, c.point, x[c.point] - before);
+  }
+  for (FaceContact& c : face_contacts_) {
+    const auto& k = c.corners;
+    const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
+    const Eigen::Vector3d before[3] = {x[k[0]], x[k[1]], x[k[2]]};
+    projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
+    for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) {
+      c.moved_m[j] += x[k[j]] - before[j];
+      movedBy(c.shape, k[j], x[k[j]] - before[j]);
+    }
+  }
+}
+
+void DeformableBody::settleSubstep() {
+  const BodySettings& settings = *settings_;
+  const double h = h_s_;
+  const double inv_h = 1.0 / h;
+  const double w_core = core_inverse_mass_per_kg_;
+  Eigen::Vector3d& core = sub_.core;
+  Eigen::Vector3d& tie_push = sub_.tie_push;
   // The shell stays bolted to the chassis: no rotation of the whole shell about the core, whose
   // reaction is the opposite of the shell's angular impulse; and the spokes pull at their anchors, off
   // the core: the moment of their reaction on it.
   const Eigen::Vector3d shift = core - settings.core_m;
-  const Eigen::Vector3d shell_defect =
-      removeShellRotation(x.data(), settings.rest_positions_m.data(), m.data(), n, settings.core_m,
-                          settings.shell_inverse_inertia, shift, tie_push);
-  report.core_angular_impulse_Nms += (shell_defect - spoke_twist) * inv_h;
+  const Eigen::Vector3d shell_defect = removeShellRotation(
+      state_.positions_m.data(), settings.rest_positions_m.data(), settings.mass_kg.data(),
+      settings.pointCount(), settings.core_m, settings.shell_inverse_inertia, shift, tie_push);
+  report_.core_angular_impulse_Nms += (shell_defect - sub_.spoke_twist) * inv_h;
 
   // Visual constraint, the last projection of the substep (Kenwright 2015, "Visual Constraints").
   core -= w_core * tie_push;
-  capDeviation(h, inputs, core, core_start, tie_push, report);
+  capDeviation(h, *inputs_, core, sub_.core_start, tie_push, report_);
 
-  plasticity(report, core, h);
+  plasticity(report_, core, h);
+  report_.contact_loss_J += contactLoss(*inputs_, h);
+}
 
+void DeformableBody::endSubstep() {
+  const BodySettings& settings = *settings_;
+  const std::size_t n = settings.pointCount();
+  auto& x = state_.positions_m;
+  auto& v = state_.velocities_mps;
+  const double inv_h = 1.0 / h_s_;
+  StepReport& report = report_;
   // Velocities from positions (Verlet style; XPBD Algorithm 1, line 16).
-  report.contact_loss_J += contactLoss(inputs, h);
   for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
-  report.contact_work_J += contact_work_x_h * inv_h;
-  report.obstacle_work_J += obstacle_work_x_h * inv_h;
-  report.contact_moment_Nms += contact_moment_x_h * inv_h;
-  core_velocity_mps_ = (core - core_start) * inv_h;
-  core_shift_m_ = core - settings.core_m;
-  to_core_Ns -= (spoke_pull_Ns + tie_push) * inv_h;
-  report.core_impulse_Ns += to_core_Ns;
-  report.contact_impulse_Ns += contact_push * inv_h;
+  report.contact_work_J += sub_.contact_work_x_h * inv_h;
+  report.obstacle_work_J += sub_.obstacle_work_x_h * inv_h;
+  report.contact_moment_Nms += sub_.contact_moment_x_h * inv_h;
+  core_velocity_mps_ = (sub_.core - sub_.core_start) * inv_h;
+  core_shift_m_ = sub_.core - settings.core_m;
+  sub_.to_core_Ns -= (sub_.spoke_pull_Ns + sub_.tie_push) * inv_h;
+  report.core_impulse_Ns += sub_.to_core_Ns;
+  report.contact_impulse_Ns += sub_.contact_push * inv_h;
 }
 
 }  // namespace deform

@@ -105,8 +105,47 @@ class DeformableBody {
   void setParams(const SolverParams& params);
 
  private:
-  void substep(double h, const std::vector<ContactShape>& shapes, const StepInputs& inputs,
-               StepReport& report);
+  // A step in stages: step() runs them in order; BodyGroup (body_group.hpp) interleaves the substeps of
+  // bodies in contact with each other, so that their contacts are solved in the same sweeps.
+  friend class BodyGroup;
+  /// Checks the inputs and starts a step of dt_s. False when the body sleeps through it (report_ is then
+  /// complete). `touched`: something outside `inputs` (another body of a group) is in reach, so the body
+  /// must not sleep through the step.
+  bool beginStep(const StepInputs& inputs, double dt_s, bool touched);
+  /// Substep k (1 .. substeps): the obstacles placed, the prediction, the contacts found, the multipliers
+  /// zeroed.
+  void beginSubstep(uint32_t k);
+  /// One Gauss-Seidel sweep of the constraints and of the obstacles' contacts.
+  void iterate();
+  /// After the sweeps: the shell orientation, the visual constraint, plasticity and the contact loss.
+  void settleSubstep();
+  /// Velocities from positions, and the substep's sums into report_.
+  void endSubstep();
+  /// The core re-centred, the sleep bookkeeping; hands back the step's report.
+  StepReport endStep();
+  template <bool kLimited>
+  void sweepConstraints();
+  /// Books a correction `dx` of point `i` by obstacle `shape` (its momentum, work and moment).
+  void movedBy(uint32_t shape, uint32_t i, const Eigen::Vector3d& dx);
+
+  // The step in progress (between beginStep and endStep).
+  const StepInputs* inputs_ = nullptr;
+  StepReport report_;
+  double dt_s_ = 0, h_s_ = 0;
+  /// The substep in progress: the core inside it and the sums its corrections build up.
+  struct SubstepSums {
+    Eigen::Vector3d core{0, 0, 0}, core_start{0, 0, 0};
+    Eigen::Vector3d to_core_Ns{0, 0, 0};
+    /// sum of lever x m_i dx_i, the lever a point on the line the correction acts along (a spoke's
+    /// anchor, a column's rest place): the spokes' moment on the points
+    Eigen::Vector3d spoke_twist{0, 0, 0};
+    Eigen::Vector3d spoke_pull_Ns{0, 0, 0};  ///< sum over spokes of m_i dx_i: their momentum x h
+    Eigen::Vector3d contact_push{0, 0, 0};   ///< sum of m_i dx_i by the obstacles
+    Eigen::Vector3d tie_push{0, 0, 0};  ///< sum of m_i dx_i by the shell orientation and visual constraints
+    double contact_work_x_h = 0, obstacle_work_x_h = 0;
+    Eigen::Vector3d contact_moment_x_h{0, 0, 0};
+  };
+  SubstepSums sub_;
   /// Fills contacts_; returns how many points are inside an obstacle.
   uint32_t findContacts(const std::vector<ContactShape>& shapes, const StepInputs& inputs, double h);
   /// `shapes` moved back along their velocities to where they are `behind_s` before the step's end.
