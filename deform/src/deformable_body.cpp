@@ -151,7 +151,8 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   core_inverse_mass_per_kg_ = std::isfinite(inputs.core_mass_kg) ? 1.0 / inputs.core_mass_kg : 0.0;
   core_shift_m_.setZero();
   core_velocity_mps_.setZero();
-  h_s_ = dt_s / static_cast<double>(params_.substeps);
+  substeps_ = params_.substeps;
+  h_s_ = dt_s / static_cast<double>(substeps_);
   return true;
 }
 
@@ -253,7 +254,7 @@ void DeformableBody::beginSubstep(uint32_t k) {
   const StepInputs& inputs = *inputs_;
   StepReport& report = report_;
   const double h = h_s_;
-  placeObstacles(inputs, static_cast<double>(params_.substeps - k) * h);
+  placeObstacles(inputs, static_cast<double>(substeps_ - k) * h);
   const std::size_t n = settings.pointCount();
   auto& x = state_.positions_m;
   auto& v = state_.velocities_mps;

@@ -222,15 +222,21 @@ TEST_CASE("Crush: car to car, both dent from the other's surface", "[crush]") {
 
 TEST_CASE("Crush: a side impact dents the struck car's flank too", "[crush]") {
   // scenes/car_to_car.json: the striking front meets the struck car's side between its control points;
-  // before face contacts the struck car took no dent at all (deviation 0, plastic work 0).
+  // before face contacts the struck car took no dent at all (deviation 0, plastic work 0). The two bodies
+  // are stepped as one (deform::stepGroup), so how the crush splits between them follows from their
+  // columns; at 250 points each (measured 2.9 kJ and 5 cm of the struck flank). At 60 points the flank's
+  // coarse patches carry the impact nearly elastically (0.27 kJ, 1.1 cm; 20 kJ at 1000 points): the split
+  // does not converge in N yet (docs/CRASH_CALIBRATION.md).
   Simulation sim;
   CarStart a, b;
   a.speed_mps = 40 * kKmh;
   b.speed_mps = 30 * kKmh;
   b.heading_rad = std::numbers::pi / 2;
   b.position_m = {9.0, -5.2, 0};
-  const CarId striking = sim.addDeformableCar(sedan(), {}, a, {});
-  const CarId struck = sim.addDeformableCar(sedan(), {}, b, {});
+  DeformationSettings finer;
+  finer.control_points = 250;
+  const CarId striking = sim.addDeformableCar(sedan(), {}, a, finer);
+  const CarId struck = sim.addDeformableCar(sedan(), {}, b, finer);
   sim.run(1.5);
   const CrashMetrics ma = sim.metrics(striking), mb = sim.metrics(struck);
   checkSane(ma, 0.05);
@@ -241,6 +247,13 @@ TEST_CASE("Crush: a side impact dents the struck car's flank too", "[crush]") {
   CHECK(ma.max_deviation_m > 0.05);
   CHECK(mb.max_deviation_m > 0.02);
   CHECK(mb.energy.plastic_work_J > 500);  // a dent of centimetres in a door, not numerical noise
+  // Each car's energy account closes within 5 % of what came in: its own kinetic energy, and the work the
+  // other car's surface did on its body (the struck car is pushed; one contact for the pair, no leader).
+  for (const CrashMetrics* m : {&ma, &mb}) {
+    const double came_in_J = m->energy.kinetic_initial_J + std::max(0.0, m->energy.obstacle_work_J);
+    INFO("unexplained " << m->energy.balance_error_J << " J of " << came_in_J << " J");
+    CHECK(std::abs(m->energy.balance_error_J) < 0.05 * came_in_J);
+  }
   // The struck car's dent is in its flank: the point that moved most lies on its side, not its ends.
   const auto rest = sim.controlRestPoints(struck);
   const auto now = sim.controlPoints(struck);

@@ -27,6 +27,12 @@ bool standsOnGround(const ObstacleShape& shape) {
   return true;
 }
 
+bool Simulation::Impl::pairsWith(const DeformableCar& dc, EntityRef other) const {
+  if (other.kind != EntityRef::Kind::Car || other.index >= index_of.size() || index_of[other.index] < 0)
+    return false;
+  return dc.settings.coupling == Coupling::Crush && of(other.index).settings.coupling == Coupling::Crush;
+}
+
 void Simulation::Impl::addApproaching(DeformableCar& dc) const {
   // ODE collides before it integrates: its contacts are where the car was when the step began, so an
   // obstacle the car reaches during the step would reach deform a step late, with the control points
@@ -100,6 +106,25 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
       dc.touching.push_back(c.other);
   dc.in_ode_contact = dc.touching.size();
   addApproaching(dc);
+  // Another deformable car, both in the crush coupling: the two bodies are stepped as one (deform's
+  // stepGroup, Simulation::step), each meeting the other's surface as it deforms; not a shape here.
+  dc.partners.clear();
+  dc.partner_in_ode.clear();
+  if (crush) {
+    std::size_t kept = 0, kept_in_ode = 0;
+    for (std::size_t k = 0; k < dc.touching.size(); ++k) {
+      const EntityRef other = dc.touching[k];
+      if (pairsWith(dc, other)) {
+        dc.partners.push_back(other.index);
+        dc.partner_in_ode.push_back(k < dc.in_ode_contact ? 1 : 0);
+        continue;
+      }
+      dc.touching[kept++] = other;
+      if (k < dc.in_ode_contact) ++kept_in_ode;
+    }
+    dc.touching.resize(kept);
+    dc.in_ode_contact = kept_in_ode;
+  }
 
   // The obstacles where they are at the end of the step (vehicle frame), with their motion relative to
   // the chassis (the velocity of their point at the core, and their turn): deform moves them along it
@@ -225,6 +250,9 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   if (std::isfinite(obstacle_work_J)) dc.obstacle_work_J += obstacle_work_J;
   dc.contact_loss_J += report.contact_loss_J;
   dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(dc.in_ode_contact));
+  for (std::size_t k = 0; k < dc.partners.size(); ++k)  // another car's body, in ODE's contacts or pushed
+    if (dc.partner_in_ode[k] || (k < dc.partner_pushed.size() && dc.partner_pushed[k]))
+      dc.hit.push_back({EntityRef::Kind::Car, dc.partners[k]});
   for (std::size_t k = dc.in_ode_contact; k < dc.touching.size(); ++k)
     if (k < report.contact_impulse_per_obstacle_Ns.size() &&
         report.contact_impulse_per_obstacle_Ns[k].squaredNorm() > 0)
@@ -275,7 +303,7 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   }
   const int quiet_needed = std::max(1, static_cast<int>(std::ceil(0.1 / dt)));
   if (crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed && dc.touching.empty() &&
-      report.max_speed_mps < 0.05) {
+      dc.partners.empty() && report.max_speed_mps < 0.05) {
     const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
     const deform::ControlMesh dented =
         deform::buildControlMesh(dc.body->state().positions_m, n, "dented body");

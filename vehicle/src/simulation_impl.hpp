@@ -44,6 +44,11 @@ struct DeformableCar {
   /// impact and rebound window; one within reach but missed is not an impact).
   std::vector<EntityRef> hit;
   std::size_t in_ode_contact = 0;  ///< the first entries of touching, found in ODE's contacts
+  /// Other deformable cars within reach, both in the crush coupling: stepped with this one as a group
+  /// (deform::stepGroup), not in touching. Per partner: in ODE's contacts, and whether the bodies' contacts
+  /// pushed (set by the group's step).
+  std::vector<CarId> partners;
+  std::vector<uint8_t> partner_in_ode, partner_pushed;
   /// Its control points in the world before this step's deformation: what other cars dent against
   /// (taken for every car first, so the order cars are stepped in does not matter).
   ObstacleShape world_shape;
@@ -111,9 +116,10 @@ struct Simulation::Impl {
   CarBuildCache builds;  ///< one build per mesh and shaping settings, shared by the cars
   int threads = 1;       ///< for the cars' deformation steps (Simulation::setThreads)
 
-  /// Per car (index into cars): whether it touches another car or a free obstacle this step, so that its
-  /// step reads or writes what another car's does (it then runs in the cars' order, on one thread).
-  std::vector<uint8_t> coupledCars() const;
+  /// The cars (indices into cars, prepared) in groups whose bodies step as one: a car with its partners
+  /// and theirs, each group in the cars' order, the groups in the order of their first car; a car with no
+  /// partner alone (car_group.cpp).
+  std::vector<std::vector<std::size_t>> bodyGroups() const;
   /// This step's boxes in the world, ungrown (updateBoxes, after ODE's step and the cars' snapshots):
   /// per CarId its control points (a deformable car) or hull, per ObstacleId its shape (the ground's is
   /// left empty: a half-space has no box).
@@ -214,6 +220,11 @@ struct Simulation::Impl {
                      const Eigen::Vector3d& omega_before) const;
   void solveCar(DeformableCar& dc) const;
   void finishCar(DeformableCar& dc);
+  /// Whether `other` is a deformable car stepped with `dc` as one group (both in the crush coupling).
+  bool pairsWith(const DeformableCar& dc, EntityRef other) const;
+  /// Steps the bodies of `group` (indices into cars, prepared) as one: deform::stepGroup with a link for
+  /// every pair of partners among them (car_group.cpp).
+  void solveGroup(const std::vector<std::size_t>& group);
   /// Adds to dc.touching what its control points can reach within this step (crush_coupling.cpp).
   void addApproaching(DeformableCar& dc) const;
   static constexpr double kApproachMargin_m = 0.01;

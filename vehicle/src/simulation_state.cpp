@@ -130,6 +130,9 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
     *x = in.real();
   // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
   dc.touching.clear();
+  dc.partners.clear();
+  dc.partner_in_ode.clear();
+  dc.partner_pushed.clear();
   dc.hit.clear();
   dc.shapes.clear();
   dc.world_shape = ObstacleShape{};

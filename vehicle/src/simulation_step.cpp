@@ -42,21 +42,6 @@ int Simulation::threads() const {
   return impl_->threads;
 }
 
-std::vector<uint8_t> Simulation::Impl::coupledCars() const {
-  std::vector<uint8_t> coupled(cars.size(), 0);
-  auto mark = [&](EntityRef self, EntityRef other) {
-    if (self.kind != EntityRef::Kind::Car || self.index >= index_of.size() || index_of[self.index] < 0)
-      return;
-    if (other.kind == EntityRef::Kind::Car || world.obstacleIsDynamic(other.index))
-      coupled[static_cast<std::size_t>(index_of[self.index])] = 1;
-  };
-  for (const ContactPoint& c : world.contacts()) {
-    mark(c.a, c.b);
-    mark(c.b, c.a);
-  }
-  return coupled;
-}
-
 void Simulation::Impl::updateBoxes() {
   car_boxes.assign(world.carCount(), Box{});
   for (CarId c = 0; c < world.carCount(); ++c) {
@@ -167,7 +152,6 @@ void Simulation::step() {
   m.car_motion.resize(m.world.carCount());
   for (CarId c = 0; c < m.world.carCount(); ++c) m.refreshMotion(c);
   m.updateBoxes();
-  const std::vector<uint8_t> coupled = m.coupledCars();
   bool any_skips = false;
   for (const auto& dc : m.cars) any_skips = any_skips || dc->settings.skip_when_idle;
   if (any_skips) {
@@ -175,69 +159,71 @@ void Simulation::step() {
     for (std::size_t i = 0; i < n; ++i)
       if (m.cars[i]->settings.skip_when_idle) m.holdAsleep(*m.cars[i], idle[i] != 0);
   }
-  std::vector<std::size_t> alone;  // cars whose inputs and body step touch only themselves
-  for (std::size_t i = 0; i < n; ++i)
-    if (!coupled[i]) alone.push_back(i);
   lap(timings.coupling_ms);
 
-  // Each car's energy account, inputs and body step; its reaction and metrics come after, in order.
-  auto prepareAndSolve = [&](std::size_t i, CarLaps& laps) {
-    DeformableCar& dc = *m.cars[i];
-    auto c = Clock::now();
-    auto carLap = [&c](double& stage_ms) {
-      const auto now = Clock::now();
-      stage_ms += ms(now - c);
-      c = now;
-    };
-    dc.step_other_work_J = m.otherWork_J(dc, velocity_before[i], omega_before[i]);
-    carLap(laps.metrics_ms);
-    m.prepareCar(dc);
-    carLap(laps.coupling_ms);
-    m.solveCar(dc);
-    carLap(laps.deform_ms);
-  };
+  // 1. Every car's energy account and inputs, from the world after ODE's step (reads only). 2. Groups of
+  // cars whose bodies meet (partners), each a set of cars in order. 3. Each group's bodies step as one,
+  // the groups in parallel (each touches only its own cars). 4. The reactions and metrics, in order.
   std::vector<CarLaps> laps(n);
   std::vector<std::exception_ptr> errors(n);
-  const auto parallel_start = Clock::now();
-  const auto count = static_cast<std::ptrdiff_t>(alone.size());
-#pragma omp parallel for num_threads(m.threads) schedule(dynamic, 1) if (m.threads > 1 && count > 1)
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const std::size_t i = alone[static_cast<std::size_t>(k)];
-    try {
-      prepareAndSolve(i, laps[i]);
-    } catch (...) {
-      errors[i] = std::current_exception();  // thrown below, in the cars' order
+  // Runs `work(k, laps)` for k < count on the threads; the parallel part's wall time is split over the
+  // stages as their time summed over the cars.
+  auto inParallel = [&](std::size_t count, auto&& work) {
+    for (CarLaps& l : laps) l = {};
+    const auto start = Clock::now();
+    const auto total = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for num_threads(m.threads) schedule(dynamic, 1) if (m.threads > 1 && total > 1)
+    for (std::ptrdiff_t k = 0; k < total; ++k) {
+      try {
+        work(static_cast<std::size_t>(k));
+      } catch (...) {
+        errors[static_cast<std::size_t>(k) < n ? static_cast<std::size_t>(k) : 0] = std::current_exception();
+      }
     }
-  }
-  // The parallel part's wall time, split over its stages as their time summed over the cars.
-  const double parallel_ms = ms(Clock::now() - parallel_start);
-  CarLaps sum;
-  for (std::size_t i : alone) {
-    sum.metrics_ms += laps[i].metrics_ms;
-    sum.coupling_ms += laps[i].coupling_ms;
-    sum.deform_ms += laps[i].deform_ms;
-  }
-  const double summed_ms = sum.metrics_ms + sum.coupling_ms + sum.deform_ms;
-  if (summed_ms > 0) {
-    timings.metrics_ms += parallel_ms * sum.metrics_ms / summed_ms;
-    timings.coupling_ms += parallel_ms * sum.coupling_ms / summed_ms;
-    timings.deform_ms += parallel_ms * sum.deform_ms / summed_ms;
-  } else {
-    timings.coupling_ms += parallel_ms;
-  }
+    const double parallel_ms = ms(Clock::now() - start);
+    CarLaps sum;
+    for (const CarLaps& l : laps) {
+      sum.metrics_ms += l.metrics_ms;
+      sum.coupling_ms += l.coupling_ms;
+      sum.deform_ms += l.deform_ms;
+    }
+    const double summed_ms = sum.metrics_ms + sum.coupling_ms + sum.deform_ms;
+    if (summed_ms > 0) {
+      timings.metrics_ms += parallel_ms * sum.metrics_ms / summed_ms;
+      timings.coupling_ms += parallel_ms * sum.coupling_ms / summed_ms;
+      timings.deform_ms += parallel_ms * sum.deform_ms / summed_ms;
+    } else {
+      timings.coupling_ms += parallel_ms;
+    }
+    for (const std::exception_ptr& e : errors)  // the first in the cars' order
+      if (e) std::rethrow_exception(e);
+  };
+  inParallel(n, [&](std::size_t i) {
+    DeformableCar& dc = *m.cars[i];
+    auto c = Clock::now();
+    dc.step_other_work_J = m.otherWork_J(dc, velocity_before[i], omega_before[i]);
+    const auto after_work = Clock::now();
+    laps[i].metrics_ms += ms(after_work - c);
+    m.prepareCar(dc);
+    laps[i].coupling_ms += ms(Clock::now() - after_work);
+  });
+
+  t = Clock::now();
+  const std::vector<std::vector<std::size_t>> groups = m.bodyGroups();
+  lap(timings.coupling_ms);
+  inParallel(groups.size(), [&](std::size_t g) {
+    const auto c = Clock::now();
+    const std::vector<std::size_t>& group = groups[g];
+    if (group.size() == 1)
+      m.solveCar(*m.cars[group.front()]);
+    else
+      m.solveGroup(group);
+    laps[group.front()].deform_ms += ms(Clock::now() - c);
+  });
 
   t = Clock::now();
   for (std::size_t i = 0; i < n; ++i) {
     DeformableCar& dc = *m.cars[i];
-    if (errors[i]) std::rethrow_exception(errors[i]);
-    if (coupled[i]) {
-      CarLaps own;
-      prepareAndSolve(i, own);
-      timings.metrics_ms += own.metrics_ms;
-      timings.coupling_ms += own.coupling_ms;
-      timings.deform_ms += own.deform_ms;
-      t = Clock::now();
-    }
     m.finishCar(dc);
     lap(timings.coupling_ms);
     m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);

@@ -132,6 +132,7 @@ class DeformableBody {
   const StepInputs* inputs_ = nullptr;
   StepReport report_;
   double dt_s_ = 0, h_s_ = 0;
+  uint32_t substeps_ = 1;  ///< this step's (a group's may exceed params_.substeps)
   /// The substep in progress: the core inside it and the sums its corrections build up.
   struct SubstepSums {
     Eigen::Vector3d core{0, 0, 0}, core_start{0, 0, 0};

@@ -1,0 +1,230 @@
+// Contacts between two bodies of a group (body_group_impl.hpp): places on one surface (its control points
+// and samples on its triangles) inside the other, or within the contact margin of it, each with the
+// nearest place on the other surface.
+#include "body_group_impl.hpp"
+#include "triangle_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace deform {
+namespace {
+
+// Samples on a control triangle: a grid at most this far apart, 3 to 8 per edge (its interior only; the
+// corners are control points). As deform's face contacts against an obstacle (body_contacts.cpp).
+constexpr double kSampleSpacing_m = 0.1;
+constexpr int kFewestPerEdge = 3, kMostPerEdge = 8;
+
+Eigen::Vector3d lowest(const std::vector<Eigen::Vector3d>& p) {
+  Eigen::Vector3d m = p.front();
+  for (const auto& q : p) m = m.cwiseMin(q);
+  return m;
+}
+
+Eigen::Vector3d highest(const std::vector<Eigen::Vector3d>& p) {
+  Eigen::Vector3d m = p.front();
+  for (const auto& q : p) m = m.cwiseMax(q);
+  return m;
+}
+
+}  // namespace
+
+std::vector<uint32_t> edgeNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles) {
+  std::vector<std::pair<uint64_t, uint32_t>> edges;  // (undirected edge key, 3 t + j)
+  for (uint32_t t = 0; t < triangles.size(); ++t)
+    for (uint32_t j = 0; j < 3; ++j) {
+      const uint32_t u = triangles[t][j], v = triangles[t][(j + 1) % 3];
+      edges.emplace_back((static_cast<uint64_t>(std::min(u, v)) << 32) | std::max(u, v), 3 * t + j);
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<uint32_t> across(3 * triangles.size(), UINT32_MAX);
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k)
+    if (edges[k].first == edges[k + 1].first) {
+      across[edges[k].second] = edges[k + 1].second / 3;
+      across[edges[k + 1].second] = edges[k].second / 3;
+    }
+  return across;
+}
+
+void BodyGroup::findContacts(std::size_t l) {
+  state_[l].contacts.clear();
+  findContacts(l, 0);
+  findContacts(l, 1);
+}
+
+void BodyGroup::samplesOf(uint8_t side, std::size_t l, const std::vector<Eigen::Vector3d>& mapped,
+                          const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  // A broad flat front can meet the other body between its control points, and a coarse point pressed
+  // into the middle of the other's triangle is resisted by three columns while it has one: samples on
+  // both sides make the contact alike from either side (a side impact dents the struck car too).
+  const DeformableBody& one = body(side == 0 ? links_[l].a : links_[l].b);
+  samples_.clear();
+  auto inside = [&](const Eigen::Vector3d& p) {
+    return !(p.array() < lo.array()).any() && !(p.array() > hi.array()).any();
+  };
+  for (uint32_t i = 0; i < mapped.size(); ++i)
+    if (inside(mapped[i])) samples_.push_back({{i, i, i}, {1, 0, 0}, mapped[i]});
+  for (const auto& t : one.settings_->triangles) {
+    const Eigen::Vector3d &p0 = mapped[t[0]], &p1 = mapped[t[1]], &p2 = mapped[t[2]];
+    if ((p0.cwiseMax(p1).cwiseMax(p2).array() < lo.array()).any() ||
+        (p0.cwiseMin(p1).cwiseMin(p2).array() > hi.array()).any())
+      continue;
+    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+    const int k =
+        std::clamp(static_cast<int>(std::ceil(longest / kSampleSpacing_m)), kFewestPerEdge, kMostPerEdge);
+    for (int i = 1; i < k; ++i)
+      for (int j = 1; i + j < k; ++j) {
+        const Eigen::Vector3d bary(static_cast<double>(i) / k, static_cast<double>(j) / k,
+                                   static_cast<double>(k - i - j) / k);
+        const Eigen::Vector3d q = bary[0] * p0 + bary[1] * p1 + bary[2] * p2;
+        if (inside(q)) samples_.push_back({t, bary, q});
+      }
+  }
+}
+
+void BodyGroup::findContacts(std::size_t l, uint8_t point_side) {
+  // Places on one body's surface against the other's control surface, in a's frame: the point of the
+  // surface nearest each, and on which side of the surface it lies by the angle-weighted pseudo-normal
+  // there (face, edge or corner; Baerentzen & Aanaes 2005: exact for a closed surface, dented or not). A
+  // place inside, no deeper than a substep's closing travel plus a crushed layer, or outside within the
+  // contact margin, is in contact with its nearest place. The candidates are the places inside the other
+  // body's box and, for each triangle near them, those in the grid cells its box covers.
+  const BodyLink& link = links_[l];
+  LinkState& ls = state_[l];
+  DeformableBody& a = body(link.a);
+  DeformableBody& b = body(link.b);
+  mapped_a_ = a.state_.positions_m;
+  mapped_b_.resize(b.state_.positions_m.size());
+  for (std::size_t i = 0; i < mapped_b_.size(); ++i)
+    mapped_b_[i] = toA(link, b.state_.positions_m[i], ls.behind_s);
+  const std::vector<Eigen::Vector3d>& points = point_side == 0 ? mapped_a_ : mapped_b_;
+  const std::vector<Eigen::Vector3d>& corners = point_side == 0 ? mapped_b_ : mapped_a_;
+  const uint32_t triangle_index = point_side == 0 ? link.b : link.a;
+  const auto& triangles = body(triangle_index).settings_->triangles;
+  if (points.empty() || corners.empty() || triangles.empty()) return;
+  const double margin_m = std::max(a.params_.contact_margin_m, b.params_.contact_margin_m);
+  // How deep a place may be and still be in contact: a substep's closing travel (the frames' and the
+  // fastest points') twice, and 5 cm of layer a crushed surface may hold it in.
+  double fastest_mps = 0;
+  for (const DeformableBody* one : {&a, &b})
+    for (const Eigen::Vector3d& v : one->state_.velocities_mps) fastest_mps = std::max(fastest_mps, v.norm());
+  const double reach_m = 0.05 + 2.0 * h_s_ * (link.velocity_mps.norm() + 2.0 * fastest_mps);
+  const double grow_m = std::max(margin_m, reach_m);
+  const Eigen::Vector3d corner_lo = lowest(corners), corner_hi = highest(corners);
+  samplesOf(point_side, l, points, corner_lo.array() - grow_m, corner_hi.array() + grow_m);
+  if (samples_.empty()) return;
+
+  // The surface's pseudo-normals: faces, corners (angle-weighted), edges (the two faces' sum).
+  face_normal_.resize(triangles.size());
+  vertex_normal_.assign(corners.size(), Eigen::Vector3d::Zero());
+  double cell_m = 0;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    const Eigen::Vector3d outward =
+        (corners[tri[1]] - corners[tri[0]]).cross(corners[tri[2]] - corners[tri[0]]);
+    const double norm = outward.norm();
+    face_normal_[t] = norm > 0 ? Eigen::Vector3d(outward / norm) : Eigen::Vector3d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d e1 = corners[tri[(j + 1) % 3]] - corners[tri[j]];
+      const Eigen::Vector3d e2 = corners[tri[(j + 2) % 3]] - corners[tri[j]];
+      const double n1 = e1.norm(), n2 = e2.norm();
+      if (n1 > 0 && n2 > 0)
+        vertex_normal_[tri[j]] += std::acos(std::clamp(e1.dot(e2) / (n1 * n2), -1.0, 1.0)) * face_normal_[t];
+    }
+    cell_m +=
+        std::max((corners[tri[1]] - corners[tri[0]]).norm(), (corners[tri[2]] - corners[tri[0]]).norm());
+  }
+  cell_m = std::max(2.0 * cell_m / static_cast<double>(triangles.size()), 0.05);
+  const std::vector<uint32_t>& across = neighbours_[triangle_index];
+
+  Eigen::Vector3d sample_lo = samples_.front().position_m, sample_hi = sample_lo;
+  for (const Sample& s : samples_) {
+    sample_lo = sample_lo.cwiseMin(s.position_m);
+    sample_hi = sample_hi.cwiseMax(s.position_m);
+  }
+  const double inv_cell = 1.0 / cell_m;
+  auto cellOf = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector3i(static_cast<int>(std::floor((p.x() - corner_lo.x()) * inv_cell)) + 4,
+                           static_cast<int>(std::floor((p.y() - corner_lo.y()) * inv_cell)) + 4,
+                           static_cast<int>(std::floor((p.z() - corner_lo.z()) * inv_cell)) + 4);
+  };
+  auto key = [](const Eigen::Vector3i& c) {
+    return (static_cast<uint64_t>(c.x()) << 42) | (static_cast<uint64_t>(c.y()) << 21) |
+           static_cast<uint64_t>(c.z());
+  };
+  cells_.clear();
+  for (uint32_t s = 0; s < samples_.size(); ++s) cells_.emplace_back(key(cellOf(samples_[s].position_m)), s);
+  std::sort(cells_.begin(), cells_.end());
+  best_distance2_.assign(samples_.size(), grow_m * grow_m);
+  best_triangle_.assign(samples_.size(), UINT32_MAX);
+  best_bary_.resize(samples_.size());
+
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    const Eigen::Vector3d &q0 = corners[tri[0]], &q1 = corners[tri[1]], &q2 = corners[tri[2]];
+    const Eigen::Vector3d lo = q0.cwiseMin(q1).cwiseMin(q2).array() - grow_m;
+    const Eigen::Vector3d hi = q0.cwiseMax(q1).cwiseMax(q2).array() + grow_m;
+    if ((hi.array() < sample_lo.array()).any() || (lo.array() > sample_hi.array()).any()) continue;
+    const Eigen::Vector3i c_lo = cellOf(lo), c_hi = cellOf(hi);
+    for (int cx = std::max(c_lo.x(), 0); cx <= c_hi.x(); ++cx)
+      for (int cy = std::max(c_lo.y(), 0); cy <= c_hi.y(); ++cy)
+        for (int cz = std::max(c_lo.z(), 0); cz <= c_hi.z(); ++cz) {
+          const uint64_t k = key({cx, cy, cz});
+          auto it = std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(k, uint32_t{0}));
+          for (; it != cells_.end() && it->first == k; ++it) {
+            const uint32_t s = it->second;
+            const Eigen::Vector3d& p = samples_[s].position_m;
+            const Eigen::Vector3d bary = detail::nearestOnTriangle(p, q0, q1, q2);
+            const double distance2 = (p - (bary[0] * q0 + bary[1] * q1 + bary[2] * q2)).squaredNorm();
+            if (!(distance2 < best_distance2_[s])) continue;  // the first triangle wins a tie
+            best_distance2_[s] = distance2;
+            best_triangle_[s] = t;
+            best_bary_[s] = bary;
+          }
+        }
+  }
+  DeformableBody& point_body = point_side == 0 ? a : b;
+  DeformableBody& other_body = point_side == 0 ? b : a;
+  for (uint32_t s = 0; s < samples_.size(); ++s) {
+    const uint32_t t = best_triangle_[s];
+    if (t == UINT32_MAX) continue;
+    const auto& tri = triangles[t];
+    const Eigen::Vector3d& bary = best_bary_[s];
+    // The pseudo-normal of the region the nearest place lies in.
+    Eigen::Vector3d pseudo = face_normal_[t];
+    const int zeros = (bary[0] == 0) + (bary[1] == 0) + (bary[2] == 0);
+    if (zeros == 2) {
+      pseudo = vertex_normal_[tri[bary[0] != 0 ? 0 : bary[1] != 0 ? 1 : 2]];
+    } else if (zeros == 1) {
+      const int edge = bary[2] == 0 ? 0 : bary[0] == 0 ? 1 : 2;  // edge j runs from corner j to j + 1
+      const uint32_t other = across[3 * t + static_cast<uint32_t>(edge)];
+      if (other != UINT32_MAX) pseudo += face_normal_[other];
+    }
+    const Eigen::Vector3d nearest =
+        bary[0] * corners[tri[0]] + bary[1] * corners[tri[1]] + bary[2] * corners[tri[2]];
+    const Eigen::Vector3d offset = samples_[s].position_m - nearest;
+    const double side = offset.dot(pseudo) < 0 ? -1.0 : 1.0;
+    const double distance = side * offset.norm();
+    if (distance > margin_m || distance < -reach_m) continue;
+    Contact c;
+    c.point_side = point_side;
+    c.points = samples_[s].corners;
+    c.point_bary = samples_[s].bary;
+    c.corners = tri;
+    c.bary = bary;
+    if (offset.norm() > 1e-9)
+      c.normal = side * offset.normalized();
+    else if (pseudo.norm() > 0)
+      c.normal = pseudo.normalized();
+    else
+      continue;
+    ls.contacts.push_back(c);
+    if (distance < 0) {
+      ++point_body.report_.contact_points;
+      ++other_body.report_.contact_points;
+      ++ls.report.contacts;
+    }
+  }
+}
+
+}  // namespace deform
