@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace deform {
@@ -71,8 +73,7 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
     for (uint32_t it = 0; it < iterations; ++it) {
       for (DeformableBody* b : bodies_)
         if (it < b->params_.iterations) b->iterate();
-      for (int pass = 0; pass < kContactPasses; ++pass)
-        for (std::size_t l = 0; l < links_.size(); ++l) project(l);
+      for (int pass = 0; pass < kContactPasses; ++pass) project();
     }
     for (DeformableBody* b : bodies_) b->settleSubstep();
     for (std::size_t l = 0; l < links_.size(); ++l) account(l);
@@ -87,84 +88,119 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
   return reports;
 }
 
-void BodyGroup::project(std::size_t l) {
+void BodyGroup::project() {
   // C = n . (P - Q) >= 0, P = sum p_k x_k the place on the point side, Q = sum q_k y_k its nearest place on
   // the other, n fixed for the substep; both sides move by their inverse masses (PBD, Mueller et al. 2007,
   // eq. 8: grad_xk C = p_k n, grad_yk C = -q_k n). Friction takes out the relative tangential travel over
   // the substep, at most `friction` times the depth this correction removed (as projectContact).
-  // Jacobi over the link's contacts: every correction is found from the same positions, then applied,
+  // Jacobi over every link's contacts: every correction is found from the same positions, then applied,
   // each scaled by one over the most contacts any of its corners is in (so that a corner shared by
   // several is not moved several times over; a uniform scale keeps each contact's momentum balanced). In
   // a Gauss-Seidel pass the contact solved last wins, and with force-limited columns in series (two
   // fronts, equal yield) that order decided which car crushed: 49 / 35 kJ head-on, reversed 37 / 46 kJ.
-  const BodyLink& link = links_[l];
-  LinkState& ls = state_[l];
-  DeformableBody& a = body(link.a);
-  DeformableBody& b = body(link.b);
-  const Eigen::Matrix3d& r = link.rotation_b_to_a;
-  count_a_.assign(a.state_.positions_m.size(), 0.0);
-  count_b_.assign(b.state_.positions_m.size(), 0.0);
-  corrections_.assign(ls.contacts.size(), Eigen::Vector3d::Zero());
-  for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
-    const Contact& c = ls.contacts[n];
-    const bool point_in_b = c.point_side == 1;
-    const DeformableBody& pb = point_in_b ? b : a;
-    const DeformableBody& tb = point_in_b ? a : b;
-    const Eigen::Vector3d p =
-        placeOf(link, point_in_b, pb.state_.positions_m, c.points, c.point_bary, ls.behind_s);
-    const Eigen::Vector3d q =
-        placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
-    const double violation = c.normal.dot(p - q);
-    if (violation >= 0) continue;
-    const double denominator = denominatorOf(c, pb, tb);
-    if (!(denominator > 0)) continue;
-    Eigen::Vector3d correction = (-violation / denominator) * c.normal;  // per unit inverse mass
-    if (link.friction > 0) {
-      const Eigen::Vector3d p_start =
-          placeOf(link, point_in_b, pb.previous_m_, c.points, c.point_bary, ls.start_behind_s);
-      const Eigen::Vector3d q_start =
-          placeOf(link, !point_in_b, tb.previous_m_, c.corners, c.bary, ls.start_behind_s);
-      // The relative travel over the substep once the normal correction is made.
-      const Eigen::Vector3d travel = (p - p_start) - (q - q_start) + denominator * correction;
-      const Eigen::Vector3d tangential = travel - c.normal.dot(travel) * c.normal;
-      const double length = tangential.norm(), limit = -link.friction * violation;
-      const Eigen::Vector3d removed =
-          length <= limit ? tangential : Eigen::Vector3d(tangential * (limit / length));
-      correction -= removed / denominator;
-    }
-    corrections_[n] = correction;
-    std::vector<double>& point_count = point_in_b ? count_b_ : count_a_;
-    std::vector<double>& corner_count = point_in_b ? count_a_ : count_b_;
-    for (int j = 0; j < 3; ++j) {
-      if (c.point_bary[j] != 0) ++point_count[c.points[j]];
-      if (c.bary[j] != 0) ++corner_count[c.corners[j]];
+  // Mass splitting (Tonge et al. 2012: a point in k contacts as k copies of a k-th of its mass, the copies
+  // averaged) resolves more per pass but overshot in a pile of cars: the traffic runner left -12.6 % of
+  // its energy unexplained (-146 % at 250 points) against -4.9 % with this scaling.
+  counts_.resize(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    counts_[i].assign(bodies_[i]->state_.positions_m.size(), 0.0);
+  corrections_.resize(links_.size());
+  violations_.resize(links_.size());
+  for (std::size_t l = 0; l < links_.size(); ++l) {  // which contacts act, and how many at each point
+    const BodyLink& link = links_[l];
+    const LinkState& ls = state_[l];
+    const DeformableBody& a = body(link.a);
+    const DeformableBody& b = body(link.b);
+    violations_[l].assign(ls.contacts.size(), 0.0);
+    for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
+      const Contact& c = ls.contacts[n];
+      const bool point_in_b = c.point_side == 1;
+      const DeformableBody& pb = point_in_b ? b : a;
+      const DeformableBody& tb = point_in_b ? a : b;
+      const Eigen::Vector3d p =
+          placeOf(link, point_in_b, pb.state_.positions_m, c.points, c.point_bary, ls.behind_s);
+      const Eigen::Vector3d q =
+          placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
+      const double violation = c.normal.dot(p - q);
+      if (violation >= 0) continue;
+      violations_[l][n] = violation;
+      std::vector<double>& point_count = counts_[point_in_b ? link.b : link.a];
+      std::vector<double>& corner_count = counts_[point_in_b ? link.a : link.b];
+      for (int j = 0; j < 3; ++j) {
+        if (c.point_bary[j] != 0) ++point_count[c.points[j]];
+        if (c.bary[j] != 0) ++corner_count[c.corners[j]];
+      }
     }
   }
-  for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
-    if (corrections_[n].squaredNorm() == 0) continue;
-    Contact& c = ls.contacts[n];
-    const bool point_in_b = c.point_side == 1;
-    DeformableBody& pb = point_in_b ? b : a;
-    DeformableBody& tb = point_in_b ? a : b;
-    const std::vector<double>& point_count = point_in_b ? count_b_ : count_a_;
-    const std::vector<double>& corner_count = point_in_b ? count_a_ : count_b_;
-    double most = 1;
-    for (int j = 0; j < 3; ++j) {
-      if (c.point_bary[j] != 0) most = std::max(most, point_count[c.points[j]]);
-      if (c.bary[j] != 0) most = std::max(most, corner_count[c.corners[j]]);
+  for (std::size_t l = 0; l < links_.size(); ++l) {  // every correction from the same positions
+    const BodyLink& link = links_[l];
+    const LinkState& ls = state_[l];
+    const DeformableBody& a = body(link.a);
+    const DeformableBody& b = body(link.b);
+    corrections_[l].assign(ls.contacts.size(), Eigen::Vector3d::Zero());
+    for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
+      const double violation = violations_[l][n];
+      if (violation >= 0) continue;
+      const Contact& c = ls.contacts[n];
+      const bool point_in_b = c.point_side == 1;
+      const DeformableBody& pb = point_in_b ? b : a;
+      const DeformableBody& tb = point_in_b ? a : b;
+      const double denominator = denominatorOf(c, pb, tb);
+      if (!(denominator > 0)) continue;
+      Eigen::Vector3d correction = (-violation / denominator) * c.normal;  // per unit inverse mass
+      if (link.friction > 0) {
+        const Eigen::Vector3d p =
+            placeOf(link, point_in_b, pb.state_.positions_m, c.points, c.point_bary, ls.behind_s);
+        const Eigen::Vector3d q =
+            placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
+        const Eigen::Vector3d p_start =
+            placeOf(link, point_in_b, pb.previous_m_, c.points, c.point_bary, ls.start_behind_s);
+        const Eigen::Vector3d q_start =
+            placeOf(link, !point_in_b, tb.previous_m_, c.corners, c.bary, ls.start_behind_s);
+        // The relative travel over the substep once the normal correction is made.
+        const Eigen::Vector3d travel = (p - p_start) - (q - q_start) + denominator * correction;
+        const Eigen::Vector3d tangential = travel - c.normal.dot(travel) * c.normal;
+        const double length = tangential.norm(), limit = -link.friction * violation;
+        const Eigen::Vector3d removed =
+            length <= limit ? tangential : Eigen::Vector3d(tangential * (limit / length));
+        correction -= removed / denominator;
+      }
+      corrections_[l][n] = correction;
     }
-    const Eigen::Vector3d correction = corrections_[n] / most;
-    const Eigen::Vector3d to_b = r.transpose() * correction;
-    for (int j = 0; j < 3; ++j) {
-      if (c.point_bary[j] != 0)
-        pb.state_.positions_m[c.points[j]] +=
-            (pb.settings_->inverse_mass_per_kg[c.points[j]] * c.point_bary[j]) *
-            (point_in_b ? to_b : correction);
-      if (c.bary[j] != 0)
-        tb.state_.positions_m[c.corners[j]] -=
-            (tb.settings_->inverse_mass_per_kg[c.corners[j]] * c.bary[j]) * (point_in_b ? correction : to_b);
+  }
+  for (std::size_t l = 0; l < links_.size(); ++l) {  // applied, each scaled by the most contacts at a corner
+    const BodyLink& link = links_[l];
+    LinkState& ls = state_[l];
+    DeformableBody& a = body(link.a);
+    DeformableBody& b = body(link.b);
+    const Eigen::Matrix3d& r = link.rotation_b_to_a;
+    for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
+      if (corrections_[l][n].squaredNorm() == 0) continue;
+      Contact& c = ls.contacts[n];
+      const bool point_in_b = c.point_side == 1;
+      DeformableBody& pb = point_in_b ? b : a;
+      DeformableBody& tb = point_in_b ? a : b;
+      const std::vector<double>& point_count = counts_[point_in_b ? link.b : link.a];
+      const std::vector<double>& corner_count = counts_[point_in_b ? link.a : link.b];
+      double most = 1;
+      for (int j = 0; j < 3; ++j) {
+        if (c.point_bary[j] != 0) most = std::max(most, point_count[c.points[j]]);
+        if (c.bary[j] != 0) most = std::max(most, corner_count[c.corners[j]]);
+      }
+      const Eigen::Vector3d correction = corrections_[l][n] / most;
+      const Eigen::Vector3d to_b = r.transpose() * correction;
+      for (int j = 0; j < 3; ++j) {
+        if (c.point_bary[j] != 0)
+          pb.state_.positions_m[c.points[j]] +=
+              (pb.settings_->inverse_mass_per_kg[c.points[j]] * c.point_bary[j]) *
+              (point_in_b ? to_b : correction);
+        if (c.bary[j] != 0)
+          tb.state_.positions_m[c.corners[j]] -=
+              (tb.settings_->inverse_mass_per_kg[c.corners[j]] * c.bary[j]) *
+              (point_in_b ? correction : to_b);
+      }
+      c.push_x_h += correction;  // sum m_k dx_k over the point side's corners
     }
-    c.push_x_h += correction;  // sum m_k dx_k over the point side's corners
   }
 }
 

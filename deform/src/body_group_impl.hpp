@@ -69,7 +69,8 @@ class BodyGroup {
   /// samples_; `mapped` its positions in a's frame.
   void samplesOf(uint8_t side, std::size_t l, const std::vector<Eigen::Vector3d>& mapped,
                  const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
-  void project(std::size_t l);
+  /// One Jacobi pass over every link's contacts.
+  void project();
   static double denominatorOf(const Contact& c, const DeformableBody& pb, const DeformableBody& tb);
   void account(std::size_t l);
 
@@ -88,8 +89,9 @@ class BodyGroup {
   /// Per body: for each triangle t and edge j (corner j to j + 1), the triangle across it (UINT32_MAX: none).
   std::vector<std::vector<uint32_t>> neighbours_;
   // Scratch for project.
-  std::vector<double> count_a_, count_b_;
-  std::vector<Eigen::Vector3d> corrections_;
+  std::vector<std::vector<double>> counts_;  ///< per body, per point: the contacts it is in this pass
+  std::vector<std::vector<Eigen::Vector3d>> corrections_;  ///< per link, per contact
+  std::vector<std::vector<double>> violations_;            ///< per link, per contact (< 0: it acts)
 };
 
 /// For each triangle t and edge j (corner j to j + 1), the triangle sharing that edge (UINT32_MAX: none).

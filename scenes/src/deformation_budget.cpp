@@ -119,13 +119,13 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // deform's timing_ms over deform_steps.solved, this machine, one thread (docs/BENCHMARKS.md,
   // "Deformation levels", with the commands); against another car, over the steps the two cars touch
   // (car_to_car's whole run averaged the hit with the free spin after it, 4x less: `traffic`'s pile-up,
-  // pressed together for 7 s, ran at 1.6x its budget). K changes the skin's cost, not the step's. A
-  // coarser level than fast is not worth having: at 30 points a car meeting another costs twice fast's
-  // (its larger triangles carry more face samples, each an MPR query against the other car's hull).
+  // pressed together for 7 s, ran at 1.6x its budget); since the two bodies are stepped as one
+  // (deform::stepGroup), the median of three runs. K changes the skin's cost, not the step's. A coarser
+  // level than fast is not worth having: a car meeting an obstacle costs about what fast's does.
   static const std::vector<DeformationLevel> levels = {
-      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.34},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.69},
-      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 3.5}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 8.4},
-      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 17.4},
+      {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.103},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.213},
+      {"accurate", 250, 8, 4, 2, 0.166, 0.18, 0.707}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 1.49},
+      {"finest", 1000, 8, 4, 2, 0.61, 0.66, 3.03},
   };
   return levels;
 }

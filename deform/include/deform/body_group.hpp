@@ -36,6 +36,8 @@ struct LinkReport {
   /// Kinetic energy the contacts took from the two bodies' relative motion [J] (each body's report
   /// books it as its own contact loss, against the other's surface as its obstacle).
   double loss_J = 0;
+  /// Deepest a place of one surface was found inside the other at a substep's start of contacts [m].
+  double deepest_m = 0;
 };
 
 /// Steps `bodies` by dt_s, each with its own `inputs` (its obstacles, impulses, chassis motion), with the

@@ -35,7 +35,7 @@ struct HeadOn {
   double crush_a_m = 0, crush_b_m = 0;  ///< how far each front came back [m]
   double plastic_a_J = 0, plastic_b_J = 0;
   double worst_momentum_error = 0;  ///< |J_a + R J_b| / |J_a| over the steps with contact
-  double deepest_m = 0;             ///< how far a's front points went past b's front at the end [m]
+  double deepest_m = 0;             ///< deepest a place of one surface was found inside the other [m]
   double closing_after_mps = 0;     ///< the cores' closing speed at the end [m/s]
 };
 
@@ -97,6 +97,7 @@ HeadOn headOn(std::size_t points, double speed_mps) {
       out.worst_momentum_error = std::max(out.worst_momentum_error, (on_a + on_b).norm() / on_a.norm());
       CHECK((links[0].impulse_on_a_Ns - r[0].contact_impulse_Ns).norm() <= 1e-9 * on_a.norm());
     }
+    out.deepest_m = std::max(out.deepest_m, links[0].deepest_m);
     fa.velocity_mps += fa.rotation * r[0].core_impulse_Ns / core_kg;
     fb.velocity_mps += fb.rotation * r[1].core_impulse_Ns / core_kg;
     fa.position_m += fa.rotation * r[0].core_displacement_m;
@@ -109,10 +110,6 @@ HeadOn headOn(std::size_t points, double speed_mps) {
   out.crush_b_m = front - front_b;
   out.plastic_a_J = a.state().plastic_work_J;
   out.plastic_b_J = b.state().plastic_work_J;
-  // a's points in the world against b's front plane (b faces -x in the world).
-  const double b_front_world = fb.position_m.x() - front_b;
-  for (const auto& p : a.state().positions_m)
-    out.deepest_m = std::max(out.deepest_m, fa.position_m.x() + p.x() - b_front_world);
   out.closing_after_mps = fa.velocity_mps.x() - fb.velocity_mps.x();
   return out;
 }
