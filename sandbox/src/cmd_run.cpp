@@ -302,7 +302,7 @@ void registerRunCommand(CLI::App& app) {
       std::printf("deformation budget %.3f ms per step: estimated %.3f ms, measured %.3f ms%s\n",
                   b["budget_ms"].get<double>(), b["estimated_ms"].get<double>(),
                   b["measured_ms_per_step"].get<double>(),
-                  b["met"].get<bool>() ? "" : " (not met: every car is at the coarsest level already)");
+                  b["met"].get<bool>() ? "" : " (not met: every car is at the coarsest level it may take)");
     }
     std::printf("%s: %llu steps, %.3f s simulated in %.1f s; state hash %s\n",
                 s["scene"].get<std::string>().c_str(),

@@ -169,14 +169,19 @@ BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int
     if (x.first_contact_s != y.first_contact_s) return x.first_contact_s < y.first_contact_s;
     return x.camera_distance_m < y.camera_distance_m;
   });
+  // The coarsest level (2 substeps x 1 iteration) is not offered to a car the script crashes into another:
+  // two such bodies at 120 Hz do not hold apart (car_to_car's T-bone created 0.37 MJ; every car of traffic
+  // at `fast`, 1.9 MJ; docs/CRASH_CALIBRATION.md, "Two cars, one solve"). Such a car starts one level up.
   std::vector<std::size_t> chosen(n, 0);  // index into levels
+  for (std::size_t i = 0; i < n; ++i)
+    if (plan.cars[i].meets == Meets::Car) chosen[i] = std::min<std::size_t>(1, levels.size() - 1);
   auto cost = [&](std::size_t car, std::size_t level) {
     const DeformationLevel& l = levels[level];
     const Meets meets = plan.cars[car].meets;
     return (meets == Meets::Car ? l.car_ms : meets == Meets::Obstacle ? l.obstacle_ms : l.driving_ms) * steps;
   };
   double total = 0;
-  for (std::size_t i = 0; i < n; ++i) total += cost(i, 0);
+  for (std::size_t i = 0; i < n; ++i) total += cost(i, chosen[i]);
   plan.met = total <= budget_ms;
   // One level up at a time, in priority order, round after round, while the budget has room: the first
   // cars get the finer levels, and no car is left at the coarsest while another takes the finest.

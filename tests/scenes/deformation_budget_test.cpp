@@ -113,6 +113,29 @@ TEST_CASE("Budget: one that even the coarsest levels exceed says so and keeps th
   CHECK(plan.estimated_ms > 0.01);
 }
 
+TEST_CASE("Budget: a car that will crash into another never gets the coarsest level", "[scenes][budget]") {
+  // Two cars head-on and a third driving away: at 2 substeps x 1 iteration two bodies in contact do not
+  // hold apart at 120 Hz (docs/CRASH_CALIBRATION.md), so however small the budget, the pair starts one
+  // level up and the budget says it is not met; the third may still take the coarsest.
+  json scene = {{"duration_s", 2.0}, {"physics_hz", 120}, {"vehicles", json::array()}};
+  const double x[3] = {0, 9, 40}, heading[3] = {0, 180, 0};
+  for (int i = 0; i < 3; ++i)
+    scene["vehicles"].push_back(
+        {{"mesh", "builtin:sedan?vertices=2000"},
+         {"mass_kg", 1500},
+         {"coupling", "crush"},
+         {"start", {{"position_m", {x[i], 0.0}}, {"heading_deg", heading[i]}, {"speed_kmh", 30}}}});
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(scenes::parseScene(scene, "pair.json"), 0.0);
+  CHECK_FALSE(plan.met);
+  REQUIRE(plan.cars.size() == 3);
+  for (int i = 0; i < 2; ++i) {
+    CHECK(plan.cars[static_cast<std::size_t>(i)].meets == scenes::Meets::Car);
+    CHECK(levelIndex(plan.cars[static_cast<std::size_t>(i)].level) == 1);
+  }
+  CHECK(plan.cars[2].meets == scenes::Meets::Nothing);
+  CHECK(levelIndex(plan.cars[2].level) == 0);
+}
+
 TEST_CASE("Budget: the scene key is applied to every car, and a negative budget is refused",
           "[scenes][budget]") {
   json scene = {{"duration_s", 1.0},
