@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -178,8 +179,9 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
   const render::Camera camera = sceneCamera(run);
-  std::vector<bool> changed(cars_.size(), false);
+  std::vector<uint8_t> changed(cars_.size(), 0);
   std::vector<std::vector<Eigen::Vector3d>> displacements_of(cars_.size());
+  std::vector<std::size_t> in_view;
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     displacements_of[i] = simulation.controlDisplacements(run.carId(i));
     const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
@@ -195,10 +197,28 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
       ++embeds_out_of_view_;
       continue;
     }
-    obstacles_near_.gather(simulation, run.carId(i), skin.restBounds(),
-                           skin.displacementBound_m(displacements));
-    changed[i] = skin.update(displacements, obstacles_near_.shapes()) > 0;
+    in_view.push_back(i);
   }
+  // Each car's embedding touches only its own skin: the cars in view in parallel, on the run's threads
+  // (Simulation::threads, `run --threads`); the picture does not depend on their number.
+  const auto count = static_cast<std::ptrdiff_t>(in_view.size());
+  const int threads = simulation.threads();
+  std::vector<std::exception_ptr> errors(in_view.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && count > 1)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const std::size_t i = in_view[static_cast<std::size_t>(k)];
+    try {
+      CarMeshes& car = cars_[i];
+      const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
+      car.obstacles_near.gather(simulation, run.carId(i), car.skin->restBounds(),
+                                car.skin->displacementBound_m(displacements));
+      changed[i] = car.skin->update(displacements, car.obstacles_near.shapes()) > 0 ? 1 : 0;
+    } catch (...) {
+      errors[static_cast<std::size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   times.embed_ms += msSince(start);
 
   start = Clock::now();

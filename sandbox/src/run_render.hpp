@@ -42,6 +42,7 @@ class RunRenderer {
     render::Renderer::MeshId body = 0;
     std::vector<render::Renderer::MeshId> wheels;
     std::unique_ptr<scenes::CarSkin> skin;
+    scenes::SkinObstacles obstacles_near;  ///< scratch: what its render mesh is kept out of
     /// The wheel centres (vehicle frame) embedded like render vertices: a crushed front carries its
     /// wheels back with it instead of leaving them standing out of the bodywork.
     deform::Skin hub_skin;
@@ -57,8 +58,7 @@ class RunRenderer {
   std::vector<ObstacleMesh> obstacles_;
   render::Environment environment_;
   bool heatmap_ = false;
-  scenes::SkinObstacles obstacles_near_;  ///< scratch: what a car's render mesh is kept out of
-  float aspect_ = 16.0f / 9.0f;           ///< picture width / height
+  float aspect_ = 16.0f / 9.0f;  ///< picture width / height
   std::size_t embeds_out_of_view_ = 0;
 };
 
