@@ -42,10 +42,7 @@ struct HeadOn {
 /// Two sedan bodies of `points` control points (a 400 kg shell on a 1100 kg core each), fronts 2 cm
 /// apart, closing at `speed_mps` each, stepped as a group for 0.2 s at 500 Hz.
 HeadOn headOn(std::size_t points, double speed_mps) {
-  const VehicleModel car = makeSedan(2000);
-  std::vector<Eigen::Vector3d> cloud;
-  for (const auto& p : car.body.positions_m) cloud.push_back(p.cast<double>());
-  const ControlMesh mesh = buildControlMesh(cloud, points, "sedan");
+  const ControlMesh mesh = sedanControlMesh(points);
   BodyDescription description;
   description.max_deviation_m = 0.6;
   description.anchored_columns = true;

@@ -4,6 +4,8 @@
 // from the geometry, 1/2 C^2 / alpha). Each term is measured on its own; what is left is the solver's own
 // numerical loss (XPBD is implicit Euler in each substep: a constraint loaded by dx in a substep takes
 // k dx^2 / 2 more than it stores). It may be lost, never created.
+#include "fixtures.hpp"
+
 #include <catch2/catch.hpp>
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
@@ -13,6 +15,7 @@
 #include <cmath>
 
 using namespace deform;
+using dynamics_test::sedanControlMesh;
 
 namespace {
 
@@ -36,10 +39,7 @@ double heldEnergy_J(const BodySettings& s, const BodyState& state, const Eigen::
 
 /// The built-in sedan's body as the vehicle builds it: 1500 kg, a quarter of it in the shell.
 std::shared_ptr<const BodySettings> sedanBody(std::size_t control_points) {
-  const VehicleModel car = makeSedan(2000);
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
-  const ControlMesh mesh = buildControlMesh(points, control_points, "sedan");
+  const ControlMesh mesh = sedanControlMesh(control_points);
   MassSplit masses = distributeMass(mesh, 1500.0);
   double points_kg = 0;
   for (double m : masses.point_mass_kg) points_kg += m;

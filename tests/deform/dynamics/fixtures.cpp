@@ -2,6 +2,8 @@
 
 #include "../point_sets.hpp"
 
+#include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
 #include <deform/masses.hpp>
 
 #include <algorithm>
@@ -99,6 +101,13 @@ double meanRadius(const deform::BodySettings& settings, const deform::BodyState&
   double sum = 0;
   for (const auto& p : state.positions_m) sum += (p - settings.core_m).norm();
   return sum / static_cast<double>(state.positions_m.size());
+}
+
+deform::ControlMesh sedanControlMesh(std::size_t points) {
+  const deform::VehicleModel car = deform::makeSedan(2000);
+  std::vector<Eigen::Vector3d> cloud;
+  for (const auto& p : car.body.positions_m) cloud.push_back(p.cast<double>());
+  return deform::buildControlMesh(cloud, points, "sedan");
 }
 
 }  // namespace dynamics_test

@@ -16,6 +16,9 @@ deform::ControlMesh icosahedron(double radius_m = 1.0);
 /// Convex hull of `count` points on a sphere (Fibonacci lattice); a tetrahedron for count == 4.
 deform::ControlMesh sphereHull(std::size_t count, double radius_m = 1.0);
 
+/// The built-in sedan (its 2,000-vertex body) reduced to `points` control points.
+deform::ControlMesh sedanControlMesh(std::size_t points);
+
 /// Body settings from a control mesh and a total mass, fan-distributed (distributeMass).
 std::shared_ptr<const deform::BodySettings> makeSettings(const deform::ControlMesh& mesh, double mass_kg,
                                                          const deform::BodyDescription& description);

@@ -28,10 +28,7 @@ namespace {
 /// the core takes exactly what the points lost to it, and its velocity is what it took. Returns the total
 /// impulse on the core [N s].
 Eigen::Vector3d checkThirdLaw(const SolverParams& params, double speed_mps, double max_deviation_m) {
-  const VehicleModel car = makeSedan(2000);
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
-  const ControlMesh mesh = buildControlMesh(points, 120, "sedan");
+  const ControlMesh mesh = sedanControlMesh(120);
   BodyDescription description;
   description.max_deviation_m = max_deviation_m;
   const auto settings = makeSettings(mesh, 400.0, description);
@@ -112,10 +109,7 @@ TEST_CASE("Angular momentum: a crushed shell holding itself hands the core what 
   // orientation constraint used to report the moment it would hand an uncrushed shell, a torque of the
   // body on itself: here 9-10 times what the points gained, with the same sign (repeated impacts: 6 kN m
   // of yaw while driving straight, 22 kJ created).
-  const VehicleModel car = makeSedan(2000);
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
-  const ControlMesh mesh = buildControlMesh(points, 120, "sedan");
+  const ControlMesh mesh = sedanControlMesh(120);
   BodyDescription description;
   description.max_deviation_m = 1.0;
   description.anchored_columns = true;
