@@ -119,12 +119,28 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
        << " ms per physics step (`--budget-ms`): the plan's estimate (every body awake) and deform's "
           "measured "
           "time per physics step, every car together.\n\n"
-       << "| cars | threads | levels | estimated ms | measured ms | measured / budget |\n"
-       << "|---:|---:|---|---:|---:|---:|\n";
-    for (const CarsBenchRow& r : rows)
+       << "| cars | threads | levels | estimated ms | measured ms | measured / budget | within 20 % |\n"
+       << "|---:|---:|---|---:|---:|---:|---|\n";
+    // The budget holds when deform's measured time is within 20 % of it (issue 12), where the plan could
+    // meet it (a budget below the coarsest levels says so and is not a miss).
+    std::size_t held = 0, meetable = 0;
+    for (const CarsBenchRow& r : rows) {
+      const bool can = r.budget_estimated_ms <= *options.budget_ms;
+      const bool within = r.budget_measured_ms <= 1.2 * *options.budget_ms;
+      meetable += can ? 1 : 0;
+      held += can && within ? 1 : 0;
       md << "| " << r.cars << " | " << r.threads << " | " << r.levels << " | "
          << CsvTable::fixed(r.budget_estimated_ms, 3) << " | " << CsvTable::fixed(r.budget_measured_ms, 3)
-         << " | " << CsvTable::fixed(r.budget_measured_ms / *options.budget_ms, 2) << " |\n";
+         << " | " << CsvTable::fixed(r.budget_measured_ms / *options.budget_ms, 2) << " | "
+         << (!can     ? "not meetable"
+             : within ? "yes"
+                      : "**no**")
+         << " |\n";
+    }
+    md << "\nThe budget held within 20 % in " << held << " of the " << meetable
+       << " runs it could be met in.\n";
+    std::printf("deformation budget held within 20 %% in %zu of the %zu runs it could be met in\n", held,
+                meetable);
   }
   scenes::writeFileAtomically(dir + "/cars.md", md.str());
   std::printf("wrote %s/cars.csv, %s/cars.md\n", dir.c_str(), dir.c_str());
