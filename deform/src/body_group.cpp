@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
 namespace deform {
@@ -59,10 +57,6 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
     b->h_s_ = h_s_;
   }
   state_.assign(links_.size(), LinkState{});
-  neighbours_.assign(count, {});
-  for (const BodyLink& link : links_)
-    for (const uint32_t i : {link.a, link.b})
-      if (neighbours_[i].empty()) neighbours_[i] = edgeNeighbours(bodies_[i]->settings_->triangles);
   for (uint32_t k = 1; k <= substeps; ++k) {
     for (DeformableBody* b : bodies_) b->beginSubstep(k);
     for (std::size_t l = 0; l < links_.size(); ++l) {
@@ -105,13 +99,12 @@ void BodyGroup::project() {
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     counts_[i].assign(bodies_[i]->state_.positions_m.size(), 0.0);
   corrections_.resize(links_.size());
-  violations_.resize(links_.size());
-  for (std::size_t l = 0; l < links_.size(); ++l) {  // which contacts act, and how many at each point
+  for (std::size_t l = 0; l < links_.size(); ++l) {  // every correction from the same positions
     const BodyLink& link = links_[l];
     const LinkState& ls = state_[l];
     const DeformableBody& a = body(link.a);
     const DeformableBody& b = body(link.b);
-    violations_[l].assign(ls.contacts.size(), 0.0);
+    corrections_[l].assign(ls.contacts.size(), Eigen::Vector3d::Zero());
     for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
       const Contact& c = ls.contacts[n];
       const bool point_in_b = c.point_side == 1;
@@ -123,36 +116,10 @@ void BodyGroup::project() {
           placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
       const double violation = c.normal.dot(p - q);
       if (violation >= 0) continue;
-      violations_[l][n] = violation;
-      std::vector<double>& point_count = counts_[point_in_b ? link.b : link.a];
-      std::vector<double>& corner_count = counts_[point_in_b ? link.a : link.b];
-      for (int j = 0; j < 3; ++j) {
-        if (c.point_bary[j] != 0) ++point_count[c.points[j]];
-        if (c.bary[j] != 0) ++corner_count[c.corners[j]];
-      }
-    }
-  }
-  for (std::size_t l = 0; l < links_.size(); ++l) {  // every correction from the same positions
-    const BodyLink& link = links_[l];
-    const LinkState& ls = state_[l];
-    const DeformableBody& a = body(link.a);
-    const DeformableBody& b = body(link.b);
-    corrections_[l].assign(ls.contacts.size(), Eigen::Vector3d::Zero());
-    for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
-      const double violation = violations_[l][n];
-      if (violation >= 0) continue;
-      const Contact& c = ls.contacts[n];
-      const bool point_in_b = c.point_side == 1;
-      const DeformableBody& pb = point_in_b ? b : a;
-      const DeformableBody& tb = point_in_b ? a : b;
       const double denominator = denominatorOf(c, pb, tb);
       if (!(denominator > 0)) continue;
       Eigen::Vector3d correction = (-violation / denominator) * c.normal;  // per unit inverse mass
       if (link.friction > 0) {
-        const Eigen::Vector3d p =
-            placeOf(link, point_in_b, pb.state_.positions_m, c.points, c.point_bary, ls.behind_s);
-        const Eigen::Vector3d q =
-            placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
         const Eigen::Vector3d p_start =
             placeOf(link, point_in_b, pb.previous_m_, c.points, c.point_bary, ls.start_behind_s);
         const Eigen::Vector3d q_start =
@@ -166,6 +133,12 @@ void BodyGroup::project() {
         correction -= removed / denominator;
       }
       corrections_[l][n] = correction;
+      std::vector<double>& point_count = counts_[point_in_b ? link.b : link.a];
+      std::vector<double>& corner_count = counts_[point_in_b ? link.a : link.b];
+      for (int j = 0; j < 3; ++j) {
+        if (c.point_bary[j] != 0) ++point_count[c.points[j]];
+        if (c.bary[j] != 0) ++corner_count[c.corners[j]];
+      }
     }
   }
   for (std::size_t l = 0; l < links_.size(); ++l) {  // applied, each scaled by the most contacts at a corner

@@ -29,34 +29,24 @@ Eigen::Vector3d highest(const std::vector<Eigen::Vector3d>& p) {
 
 }  // namespace
 
-std::vector<uint32_t> edgeNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles) {
-  std::vector<std::pair<uint64_t, uint32_t>> edges;  // (undirected edge key, 3 t + j)
-  for (uint32_t t = 0; t < triangles.size(); ++t)
-    for (uint32_t j = 0; j < 3; ++j) {
-      const uint32_t u = triangles[t][j], v = triangles[t][(j + 1) % 3];
-      edges.emplace_back((static_cast<uint64_t>(std::min(u, v)) << 32) | std::max(u, v), 3 * t + j);
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<uint32_t> across(3 * triangles.size(), UINT32_MAX);
-  for (std::size_t k = 0; k + 1 < edges.size(); ++k)
-    if (edges[k].first == edges[k + 1].first) {
-      across[edges[k].second] = edges[k + 1].second / 3;
-      across[edges[k + 1].second] = edges[k].second / 3;
-    }
-  return across;
-}
-
 void BodyGroup::findContacts(std::size_t l) {
-  state_[l].contacts.clear();
-  findContacts(l, 0);
-  findContacts(l, 1);
+  const BodyLink& link = links_[l];
+  LinkState& ls = state_[l];
+  ls.contacts.clear();
+  const std::vector<Eigen::Vector3d>& b_m = body(link.b).state_.positions_m;
+  mapped_b_.resize(b_m.size());
+  for (std::size_t i = 0; i < b_m.size(); ++i) mapped_b_[i] = toA(link, b_m[i], ls.behind_s);
+  const std::vector<Eigen::Vector3d>& a_m = body(link.a).state_.positions_m;
+  findContacts(l, 0, a_m, mapped_b_);
+  findContacts(l, 1, a_m, mapped_b_);
 }
 
 void BodyGroup::samplesOf(uint8_t side, std::size_t l, const std::vector<Eigen::Vector3d>& mapped,
                           const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   // A broad flat front can meet the other body between its control points, and a coarse point pressed
   // into the middle of the other's triangle is resisted by three columns while it has one: samples on
-  // both sides make the contact alike from either side (a side impact dents the struck car too).
+  // both sides make the contact the same seen from either side (they did not change how a side impact
+  // splits between the cars at 60 points: docs/CRASH_CALIBRATION.md, "Energy account").
   const DeformableBody& one = body(side == 0 ? links_[l].a : links_[l].b);
   samples_.clear();
   auto inside = [&](const Eigen::Vector3d& p) {
@@ -82,7 +72,8 @@ void BodyGroup::samplesOf(uint8_t side, std::size_t l, const std::vector<Eigen::
   }
 }
 
-void BodyGroup::findContacts(std::size_t l, uint8_t point_side) {
+void BodyGroup::findContacts(std::size_t l, uint8_t point_side, const std::vector<Eigen::Vector3d>& a_m,
+                             const std::vector<Eigen::Vector3d>& b_m) {
   // Places on one body's surface against the other's control surface, in a's frame: the point of the
   // surface nearest each, and on which side of the surface it lies by the angle-weighted pseudo-normal
   // there (face, edge or corner; Baerentzen & Aanaes 2005: exact for a closed surface, dented or not). A
@@ -93,14 +84,11 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side) {
   LinkState& ls = state_[l];
   DeformableBody& a = body(link.a);
   DeformableBody& b = body(link.b);
-  mapped_a_ = a.state_.positions_m;
-  mapped_b_.resize(b.state_.positions_m.size());
-  for (std::size_t i = 0; i < mapped_b_.size(); ++i)
-    mapped_b_[i] = toA(link, b.state_.positions_m[i], ls.behind_s);
-  const std::vector<Eigen::Vector3d>& points = point_side == 0 ? mapped_a_ : mapped_b_;
-  const std::vector<Eigen::Vector3d>& corners = point_side == 0 ? mapped_b_ : mapped_a_;
+  const std::vector<Eigen::Vector3d>& points = point_side == 0 ? a_m : b_m;
+  const std::vector<Eigen::Vector3d>& corners = point_side == 0 ? b_m : a_m;
   const uint32_t triangle_index = point_side == 0 ? link.b : link.a;
-  const auto& triangles = body(triangle_index).settings_->triangles;
+  const BodySettings& triangle_settings = *body(triangle_index).settings_;
+  const auto& triangles = triangle_settings.triangles;
   if (points.empty() || corners.empty() || triangles.empty()) return;
   const double margin_m = std::max(a.params_.contact_margin_m, b.params_.contact_margin_m);
   // How deep a place may be and still be in contact: the frames' closing travel over a substep four times,
@@ -135,7 +123,7 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side) {
         std::max((corners[tri[1]] - corners[tri[0]]).norm(), (corners[tri[2]] - corners[tri[0]]).norm());
   }
   cell_m = std::max(2.0 * cell_m / static_cast<double>(triangles.size()), 0.05);
-  const std::vector<uint32_t>& across = neighbours_[triangle_index];
+  const std::vector<uint32_t>& across = triangle_settings.triangle_across;
 
   Eigen::Vector3d sample_lo = samples_.front().position_m, sample_hi = sample_lo;
   for (const Sample& s : samples_) {

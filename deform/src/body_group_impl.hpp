@@ -63,8 +63,12 @@ class BodyGroup {
     if (bary[2] != 0) p += bary[2] * x[k[2]];
     return in_b ? toA(link, p, behind_s) : p;
   }
+  /// This substep's contacts of link `l`, both ways.
   void findContacts(std::size_t l);
-  void findContacts(std::size_t l, uint8_t point_side);
+  /// The places of side `point_side` (0: a's) against the other side's surface; `a_m` and `b_m` the two
+  /// bodies' positions in a's frame.
+  void findContacts(std::size_t l, uint8_t point_side, const std::vector<Eigen::Vector3d>& a_m,
+                    const std::vector<Eigen::Vector3d>& b_m);
   /// Body `side`'s control points and samples on its triangles, within `lo`..`hi` (a's frame), into
   /// samples_; `mapped` its positions in a's frame.
   void samplesOf(uint8_t side, std::size_t l, const std::vector<Eigen::Vector3d>& mapped,
@@ -80,21 +84,15 @@ class BodyGroup {
   double h_s_ = 0;
   std::vector<LinkState> state_;
   // Scratch for findContacts.
-  std::vector<Eigen::Vector3d> mapped_a_, mapped_b_;
+  std::vector<Eigen::Vector3d> mapped_b_;  ///< b's positions in a's frame
   std::vector<Sample> samples_;
   std::vector<std::pair<uint64_t, uint32_t>> cells_;
   std::vector<double> best_distance2_;
   std::vector<uint32_t> best_triangle_;
   std::vector<Eigen::Vector3d> best_bary_, face_normal_, vertex_normal_;
-  /// Per body: for each triangle t and edge j (corner j to j + 1), the triangle across it (UINT32_MAX: none).
-  std::vector<std::vector<uint32_t>> neighbours_;
   // Scratch for project.
   std::vector<std::vector<double>> counts_;  ///< per body, per point: the contacts it is in this pass
-  std::vector<std::vector<Eigen::Vector3d>> corrections_;  ///< per link, per contact
-  std::vector<std::vector<double>> violations_;            ///< per link, per contact (< 0: it acts)
+  std::vector<std::vector<Eigen::Vector3d>> corrections_;  ///< per link, per contact (zero: it does not act)
 };
-
-/// For each triangle t and edge j (corner j to j + 1), the triangle sharing that edge (UINT32_MAX: none).
-std::vector<uint32_t> edgeNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles);
 
 }  // namespace deform

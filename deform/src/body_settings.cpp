@@ -149,6 +149,7 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     if (t[0] >= n || t[1] >= n || t[2] >= n) throw InputError("control mesh: triangle index out of range");
   }
   s.triangles = mesh.triangles;
+  s.triangle_across = triangleNeighbours(s.triangles);
 
   // Tributary areas: a third of each triangle's area (as a vector, along its outward normal) to each of
   // its corners.

@@ -86,4 +86,21 @@ ControlMeshStats controlMeshStats(const ControlMesh& mesh) {
   return stats;
 }
 
+std::vector<uint32_t> triangleNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles) {
+  std::vector<std::pair<uint64_t, uint32_t>> edges;  // (undirected edge key, 3 t + j)
+  for (uint32_t t = 0; t < triangles.size(); ++t)
+    for (uint32_t j = 0; j < 3; ++j) {
+      const uint32_t u = triangles[t][j], v = triangles[t][(j + 1) % 3];
+      edges.emplace_back((static_cast<uint64_t>(std::min(u, v)) << 32) | std::max(u, v), 3 * t + j);
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<uint32_t> across(3 * triangles.size(), UINT32_MAX);
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k)
+    if (edges[k].first == edges[k + 1].first) {
+      across[edges[k].second] = edges[k + 1].second / 3;
+      across[edges[k + 1].second] = edges[k].second / 3;
+    }
+  return across;
+}
+
 }  // namespace deform

@@ -55,6 +55,30 @@ TEST_CASE("hull of a unit cube with interior points is the cube", "[control_mesh
   requireClosedOutward(hull, true);
 }
 
+TEST_CASE("each triangle's neighbour across each edge shares that edge, both ways", "[control_mesh]") {
+  const ControlMesh mesh = deform::buildControlMesh(test_points::cloud(500), 120, "cloud");
+  const std::vector<uint32_t> across = deform::triangleNeighbours(mesh.triangles);
+  REQUIRE(across.size() == 3 * mesh.triangles.size());
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (uint32_t j = 0; j < 3; ++j) {
+      const uint32_t o = across[3 * t + j];
+      REQUIRE(o < mesh.triangles.size());  // a closed surface has no open edge
+      CHECK(o != t);
+      const uint32_t u = mesh.triangles[t][j], v = mesh.triangles[t][(j + 1) % 3];
+      // The other triangle runs the edge the other way (outward winding), and points back to t across it.
+      bool found = false;
+      for (uint32_t k = 0; k < 3; ++k)
+        if (mesh.triangles[o][k] == v && mesh.triangles[o][(k + 1) % 3] == u) {
+          found = true;
+          CHECK(across[3 * o + k] == t);
+        }
+      CHECK(found);
+    }
+  // An open edge has none.
+  const std::vector<uint32_t> lone = deform::triangleNeighbours({{0, 1, 2}});
+  CHECK(lone == std::vector<uint32_t>(3, UINT32_MAX));
+}
+
 TEST_CASE("control mesh hits the target count from 4 to 5000 points", "[control_mesh]") {
   const auto points = test_points::sphere(1500, {2.4, 0.9, 0.7});  // car-sized ellipsoid
   for (std::size_t target : {4u, 8u, 30u, 60u, 250u, 1000u, 1499u, 1500u, 2000u, 4000u, 5000u}) {

@@ -63,6 +63,9 @@ struct BodySettings {
   /// The control surface's triangles, outward winding: an obstacle poking through one between its
   /// corners pushes them in (face contacts).
   std::vector<std::array<uint32_t, 3>> triangles;
+  /// triangleNeighbours(triangles): the triangle across each edge, for the pseudo-normals of another
+  /// body's contacts with this one (deform/body_group.hpp).
+  std::vector<uint32_t> triangle_across;
   std::vector<double> edge_rest_m;   ///< original rest lengths L0, one per edge [m]
   std::vector<double> spoke_rest_m;  ///< original rest lengths L0, one per spoke [m]
   /// Where each spoke is anchored on the core, relative to core_m (it moves with the core) [m]: the foot

@@ -93,4 +93,8 @@ double enclosedVolume_m3(const std::vector<Eigen::Vector3d>& points_m,
 /// Recomputes edges (with wings), volume and centre of mass from points_m and triangles.
 void finishControlMesh(ControlMesh& mesh);
 
+/// For each triangle t and edge j (corner j to corner j + 1), at 3 t + j: the triangle sharing that edge
+/// (UINT32_MAX on an open edge).
+std::vector<uint32_t> triangleNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles);
+
 }  // namespace deform
