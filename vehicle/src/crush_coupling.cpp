@@ -275,17 +275,14 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
     world.applyImpulse({EntityRef::Kind::Car, dc.id}, frame.orientation * report.core_impulse_Ns,
                        car.bodyPose().position_m, frame.orientation * moment);
     world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
-    refreshMotion(dc.id);
     dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
     for (std::size_t k = 0; k < dc.touching.size(); ++k) {  // one contact shape per touched entity
       const EntityRef& other = dc.touching[k];
       if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
         continue;  // another deformable car takes its share through its own body
       const Eigen::Vector3d impulse = report.contact_impulse_per_obstacle_Ns[k];
-      if (impulse.squaredNorm() > 0 && impulse.allFinite()) {
+      if (impulse.squaredNorm() > 0 && impulse.allFinite())
         world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
-        if (other.kind == EntityRef::Kind::Car) refreshMotion(other.index);
-      }
     }
   }
   dc.previous_velocity_mps = car.velocity_mps();

@@ -144,20 +144,17 @@ struct Simulation::Impl {
     return *cars[static_cast<std::size_t>(index_of[id])];
   }
 
-  /// Per CarId, within a step: the chassis's velocity, turn and centre of mass (world), as ODE has them
-  /// now (refreshMotion after ODE's step and after every change finishCar makes): addApproaching reads
-  /// every other car's for every car, and ODE's pose costs a quaternion each time.
+  /// Per CarId, within a step: the chassis's velocity, turn and centre of mass (world) after ODE's step
+  /// (refreshMotion): addApproaching reads every other car's for every car, and ODE's pose costs a
+  /// quaternion each time. Every car is prepared before any car's reaction (Simulation::step), so these
+  /// hold for the whole of the preparation.
   struct CarMotion {
     Eigen::Vector3d velocity_mps{0, 0, 0}, omega_radps{0, 0, 0}, com_m{0, 0, 0};
   };
   std::vector<CarMotion> car_motion;
-  /// Also raises fastest_car_mps and fastest_turn_radps when finishCar speeds a car up, so that the
-  /// bound addApproaching takes from them holds for the cars stepped after it.
   void refreshMotion(CarId c) {
     const Car& car = world.car(c);
     car_motion[c] = {car.velocity_mps(), car.angularVelocity_rad_s(), car.bodyPose().position_m};
-    fastest_car_mps = std::max(fastest_car_mps, car_motion[c].velocity_mps.norm());
-    fastest_turn_radps = std::max(fastest_turn_radps, car_motion[c].omega_radps.norm());
   }
   std::vector<Eigen::Vector3d> car_velocity_before;  ///< per CarId: velocity before this step [m/s]
   Eigen::Vector3d velocityBefore(EntityRef e) const {
