@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 using namespace vehicle;
 using crash_test::kKmh;
@@ -63,6 +64,16 @@ void checkEnergyNotCreated(const EnergyTerms& e) {
   const double tolerance_J = 0.02 * e.kinetic_initial_J + 1.0;
   CHECK(e.plastic_work_J + e.damping_loss_J <= e.contact_work_J + tolerance_J);
   CHECK(e.balance_error_J > -tolerance_J);
+}
+
+/// Two sedans head-on at 28 km/h each, 9 m apart centre to centre: the first from the origin along +x.
+std::pair<CarStart, CarStart> headOn() {
+  CarStart a, b;
+  a.speed_mps = 28 * kKmh;
+  b.speed_mps = 28 * kKmh;
+  b.heading_rad = std::numbers::pi;
+  b.position_m = {9.0, 0, 0};
+  return {a, b};
 }
 
 }  // namespace
@@ -193,11 +204,7 @@ TEST_CASE("Crush: 500 km/h into a 0.2 m wall never tunnels", "[crush]") {
 
 TEST_CASE("Crush: car to car, both dent from the other's surface", "[crush]") {
   Simulation sim;
-  CarStart a, b;
-  a.speed_mps = 28 * kKmh;
-  b.speed_mps = 28 * kKmh;
-  b.heading_rad = std::numbers::pi;
-  b.position_m = {9.0, 0, 0};
+  const auto [a, b] = headOn();
   const CarId ia = sim.addDeformableCar(sedan(), {}, a, {});
   const CarId ib = sim.addDeformableCar(sedan(), {}, b, {});
   sim.run(1.2);
@@ -210,7 +217,10 @@ TEST_CASE("Crush: car to car, both dent from the other's surface", "[crush]") {
                             << ma.max_deviation_m << " / " << mb.max_deviation_m << ", dent " << ma.max_dent_m
                             << " / " << mb.max_dent_m << ", plastic " << ma.energy.plastic_work_J << " / "
                             << mb.energy.plastic_work_J);
-  CHECK(ma.residual_crush_m == Approx(mb.residual_crush_m).epsilon(0.1));  // a symmetric crash
+  // A symmetric crash, the two bodies one solve (measured 0.220 / 0.221 m, 38.0 / 38.1 kJ; with the
+  // partner's motion taken at the first car's core only, 0.128 / 0.106 m).
+  CHECK(ma.residual_crush_m == Approx(mb.residual_crush_m).epsilon(0.02));
+  CHECK(ma.energy.plastic_work_J == Approx(mb.energy.plastic_work_J).epsilon(0.01));
   CHECK(ma.energy.plastic_work_J > 0.3 * ma.energy.kinetic_initial_J);
   // The fronts end apart, neither inside the other.
   const double front_a =
@@ -227,11 +237,7 @@ TEST_CASE("Crush: two cars meeting are one solve, whichever is added first", "[c
   // car added first absorbed 8 % more, 40.0 against 37.0 kJ).
   auto run = [](bool swapped) {
     Simulation sim;
-    CarStart a, b;
-    a.speed_mps = 28 * kKmh;
-    b.speed_mps = 28 * kKmh;
-    b.heading_rad = std::numbers::pi;
-    b.position_m = {9.0, 0, 0};
+    const auto [a, b] = headOn();
     const CarId first = sim.addDeformableCar(sedan(), {}, swapped ? b : a, {});
     const CarId second = sim.addDeformableCar(sedan(), {}, swapped ? a : b, {});
     sim.run(0.8);
