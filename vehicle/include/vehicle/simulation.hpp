@@ -215,14 +215,15 @@ class Simulation {
                          const DeformationSettings& deformation = {});
 
   /// Threads the cars' deformation steps run on (>= 1; 1: all on the calling thread). ODE's step stays
-  /// on the calling thread. The state is bit for bit the same on any count: a car that touches another
-  /// car or a free obstacle takes its whole step in the order of the cars, as on one thread; the others
-  /// read only their own state and static obstacles until their reaction, which is handed to ODE in that
-  /// order too. Throws deform::InputError naming "threads" for a count below 1.
+  /// on the calling thread. The state is bit for bit the same on any count: every car's inputs are taken
+  /// from the world as ODE's step left it (reads only), cars whose bodies can meet are stepped as one
+  /// group (deform::stepGroup; each group touches only its own cars), and the reactions are handed to ODE
+  /// in the order of the cars. Throws deform::InputError naming "threads" for a count below 1.
   void setThreads(int threads);
   int threads() const;
 
-  /// One fixed physics step: ODE, then every car's deformation (and crush coupling).
+  /// One fixed physics step: ODE, then every car's deformation (and crush coupling; two deformable cars
+  /// in the crush coupling that can meet are one solve, each meeting the other's surface as it deforms).
   void step();
   /// Steps covering `duration_s` at the fixed rate; returns how many.
   int run(double duration_s);
