@@ -122,8 +122,10 @@ TEST_CASE("Two bodies in contact: equal and opposite momentum, the same crush he
                 << h.deepest_m << " m, closing after " << h.closing_after_mps << " m/s");
     CHECK(h.worst_momentum_error <= 1e-9);
     CHECK(h.crush_a_m > 0.05);  // both dented
-    CHECK(std::abs(h.crush_a_m - h.crush_b_m) <= 0.1 * std::max(h.crush_a_m, h.crush_b_m));
-    CHECK(std::abs(h.plastic_a_J - h.plastic_b_J) <= 0.1 * std::max(h.plastic_a_J, h.plastic_b_J));
+    // No leader: the same to rounding (measured equal to 6 digits; a Gauss-Seidel contact pass gave
+    // 49 / 35 kJ, the contact solved last deciding which body crushed).
+    CHECK(std::abs(h.crush_a_m - h.crush_b_m) <= 1e-3 * std::max(h.crush_a_m, h.crush_b_m));
+    CHECK(std::abs(h.plastic_a_J - h.plastic_b_J) <= 1e-3 * std::max(h.plastic_a_J, h.plastic_b_J));
     CHECK(h.deepest_m <= 0.02);      // a's points stay out of b (within a couple of centimetres)
     CHECK(h.closing_after_mps < 0);  // the crash ended: the cores part
   }
