@@ -43,6 +43,16 @@ void enteredAt(const ContactShape& shape, const Eigen::Vector3d& start_m, const 
   p.depth_m = depth_m;
 }
 
+/// How deep below the plane through `surface_m` (unit `normal`, out of the obstacle) a point that began
+/// the substep at `start_m` may still be when it ends [m]: what it began inside by, less what
+/// `max_depenetration_mps` pushes out in `h`; 0 for a point that began outside. Motion further in than
+/// where it began is still stopped in full.
+double lingeringDepth(const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m,
+                      const Eigen::Vector3d& start_m, double max_depenetration_mps, double h) {
+  const double began_inside_m = normal.dot(surface_m - start_m);
+  return std::max(0.0, began_inside_m - max_depenetration_mps * h);
+}
+
 }  // namespace
 
 Eigen::Vector3d DeformableBody::ShiftedSupport::support(const void* user, const Eigen::Vector3d& direction) {
@@ -102,15 +112,19 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
         if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
           enteredAt(shape, start_m, x[i], p);
         const Eigen::Vector3d surface_m = x[i] + p.depth_m * p.normal;
-        contacts_.push_back({static_cast<uint32_t>(k), i, p.normal, surface_m, start_m});
+        const double lingering_m =
+            lingeringDepth(p.normal, surface_m, start_m, params_.max_depenetration_mps, h);
+        contacts_.push_back(
+            {static_cast<uint32_t>(k), i, p.normal, surface_m - lingering_m * p.normal, start_m});
         inside += p.depth_m > 0;
       }
-    if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k));
+    if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k), inputs, h);
   }
   return inside;
 }
 
-uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index) {
+uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t shape_index,
+                                          const StepInputs& inputs, double h) {
   // A thin obstacle (a bollard, another car's corner) can come through the control surface between its
   // points, where no point is inside it. Points on each triangle, a grid at most kFaceSampleSpacing_m
   // apart, are queried like the control points (with the same margin); one found inside pushes the triangle's
@@ -126,6 +140,16 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
   const auto& x = state_.positions_m;
   uint32_t found = 0;
   Penetration p;
+  // A face point found inside may linger as a control point does (lingeringDepth): where it began the
+  // substep, carried with the obstacle, is its corners' start blended.
+  auto push = [&](const std::array<uint32_t, 3>& t, const Eigen::Vector3d& bary,
+                  const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m) {
+    const Eigen::Vector3d began_m =
+        bary[0] * previous_m_[t[0]] + bary[1] * previous_m_[t[1]] + bary[2] * previous_m_[t[2]];
+    const Eigen::Vector3d start_m = began_m + h * obstacleVelocity(inputs, shape_index, began_m);
+    const double lingering_m = lingeringDepth(normal, surface_m, start_m, params_.max_depenetration_mps, h);
+    face_contacts_.push_back({shape_index, t, bary, normal, surface_m - lingering_m * normal});
+  };
   for (const auto& t : settings.triangles) {
     const Eigen::Vector3d& a = x[t[0]];
     const Eigen::Vector3d& b = x[t[1]];
@@ -165,7 +189,7 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
           const double intrusion_m = std::min(-normal.dot(deepest - a), p.depth_m);
           const Eigen::Vector3d bary(wa, wb, wc);
           const Eigen::Vector3d surface_m = q - intrusion_m * normal;
-          face_contacts_.push_back({shape_index, t, bary, -normal, surface_m});
+          push(t, bary, -normal, surface_m);
           ++found;
         }
       }
@@ -185,7 +209,7 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
         // contact loss, energy from nowhere, of which -6.3 kJ by samples inside at the substep's start).
         if (!penetration(shape, q, p, params_.contact_margin_m)) continue;
         const Eigen::Vector3d surface_m = q + p.depth_m * p.normal;
-        face_contacts_.push_back({shape_index, t, bary, p.normal, surface_m});
+        push(t, bary, p.normal, surface_m);
         found += p.depth_m > 0;
       }
     }

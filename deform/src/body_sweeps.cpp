@@ -62,6 +62,14 @@ void DeformableBody::sweepConstraints() {
   // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
   // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
   // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
+  // The summed move is the sum of each constraint's share of its correction; where the shares add up to
+  // S > 1 (a shell heavier than its core: distributeMass's own split gives S = 3) it overshoots by up to
+  // S, and diverges under a hard push. Each constraint then sees the core heavier, w'_core = S w_core +
+  // (S - 1) w_point, so that its share is 1/S of what it was and the core moves by the shares' weighted
+  // mean (mass splitting, Tonge, Benevolenski, Voroshilov 2012), still by the exact reaction of the
+  // points' moves. A car's shell is a third of its core (S < 1/3): untouched.
+  const double split = core_share_sum_;
+  auto coreSeenBy = [&](uint32_t i) { return split > 1 ? split * w_core + (split - 1) * w[i] : w_core; };
   Eigen::Vector3d sweep_pull{0, 0, 0};
   if (anchored) {  // crush columns, or spokes below
     // Crush columns: each holds its point at its rest place, which moves with the core.
@@ -81,14 +89,14 @@ void DeformableBody::sweepConstraints() {
         // yieldForce for a spoke).
         const bool bottomed = normals[k].dot(original - rest) >=
                               (1.0 - law.min_rest_fraction) * settings.spoke_rest_m[k] * (1 - 1e-12);
-        projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k],
+        projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k],
                       [&](const Eigen::Vector3d& push) {
                         // The column pushes along lambda: its point is displaced along -lambda.
                         if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
                         return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
                       });
       } else {
-        projectColumn(x[i], rest + shift, w[i], w_core, alpha_tilde, column_lambda_[k], nullptr);
+        projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k], nullptr);
       }
       const Eigen::Vector3d pull = m[i] * (x[i] - before);
       sweep_pull += pull;
@@ -99,8 +107,9 @@ void DeformableBody::sweepConstraints() {
     const SpokeConstraint& c = spokes[k];
     const Eigen::Vector3d before = x[c.point];
     Eigen::Vector3d anchor = core + anchors[k];
-    projectSpoke(x[c.point], anchor, w[c.point], w_core, spoke_rest[k], c.compliance_m_per_N * inv_h2,
-                 spoke_lambda_[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+    projectSpoke(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k],
+                 c.compliance_m_per_N * inv_h2, spoke_lambda_[k],
+                 kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
                  kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
     const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
     sweep_pull += pull;

@@ -73,22 +73,28 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     report.obstacle_work_J += impulse_Ns.dot(obstacle);
     core += move;
   }
-  // The rest are pulled back to the cap; their reactions move the heavy core, which moves every rest
-  // position, so the pass repeats until that is negligible (each pass is smaller by about shell / core
-  // mass). A point held by an obstacle no longer moves the core once it sits at its cap.
+  // The rest are pulled back to the cap. The cap ties a point to the core, so each projection moves both
+  // by their inverse masses (PBD, Mueller et al. 2007, eq. 8), point by point: moving only the point and
+  // then the core by its reaction diverged once the shell outweighed the core (each pass larger by shell /
+  // core mass). The core's move shifts every rest position, so the pass repeats until that is negligible.
+  // A point held by an obstacle no longer moves the core once it sits at its cap.
   constexpr int kMostPasses = 8;
+  const double w_core = core_inverse_mass_per_kg_;
+  const auto& w = settings.inverse_mass_per_kg;
   for (int pass = 0; pass < kMostPasses; ++pass) {
-    Eigen::Vector3d pass_push{0, 0, 0};
-    const Eigen::Vector3d shift = core - settings.core_m;
+    const Eigen::Vector3d core_before = core;
     for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d before = x[i];
-      if (projectVisual(x[i], settings.rest_positions_m[i] + shift, settings.max_deviation_m[i]))
-        pass_push += m[i] * (x[i] - before);
+      const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
+      const double cap = settings.max_deviation_m[i];
+      const double squared = d.squaredNorm();
+      if (squared <= cap * cap || !(w[i] + w_core > 0)) continue;
+      const double length = std::sqrt(squared);
+      const Eigen::Vector3d correction = ((length - cap) / ((w[i] + w_core) * length)) * d;
+      x[i] -= w[i] * correction;
+      core += w_core * correction;
+      tie_push -= m[i] * w[i] * correction;  // the point's momentum change; the core's is opposite
     }
-    tie_push += pass_push;
-    const Eigen::Vector3d core_move = -core_inverse_mass_per_kg_ * pass_push;
-    core += core_move;
-    if (core_move.squaredNorm() <= 1e-24) break;  // under 1e-12 m
+    if ((core - core_before).squaredNorm() <= 1e-24) break;  // under 1e-12 m
   }
 }
 

@@ -148,6 +148,16 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
     state_.velocities_mps[impulse.point] += impulse.impulse_Ns * settings.inverse_mass_per_kg[impulse.point];
 
   core_inverse_mass_per_kg_ = std::isfinite(inputs.core_mass_kg) ? 1.0 / inputs.core_mass_kg : 0.0;
+  // How far the core's summed reactions would overshoot (sweepConstraints, beginSubstep's drag).
+  core_share_sum_ = 0;
+  double shell_kg = 0;
+  if (core_inverse_mass_per_kg_ > 0) {
+    for (const SpokeConstraint& c : settings.spokes)
+      core_share_sum_ +=
+          core_inverse_mass_per_kg_ / (settings.inverse_mass_per_kg[c.point] + core_inverse_mass_per_kg_);
+    for (double m : settings.mass_kg) shell_kg += m;
+  }
+  drag_split_ = std::max(1.0, core_inverse_mass_per_kg_ * shell_kg);
   core_shift_m_.setZero();
   core_velocity_mps_.setZero();
   substeps_ = params_.substeps;
@@ -269,7 +279,11 @@ void DeformableBody::beginSubstep(uint32_t k) {
   // Prediction: exact viscous decay of the motion relative to the core (its reaction on the core),
   // explicit velocity update with the inertial forces, then positions.
   const double scale = params_.inertial_scale;
-  const double decay = std::exp(-params_.damping_per_s * h);
+  // Each point's drag acts in full and the core takes the summed reaction (Jacobi for the core): on a shell
+  // heavier than its core (drag_split_ > 1) that sum overshoots, so each point takes 1 / drag_split_ of
+  // its drag, and the core moves by the reactions' mass-weighted mean (as the columns, sweepConstraints).
+  const double full_decay = std::exp(-params_.damping_per_s * h);
+  const double decay = drag_split_ > 1 ? 1.0 + (full_decay - 1.0) / drag_split_ : full_decay;
   const bool inertial = scale > 0 && (load_mps2_.squaredNorm() > 0 || omega_radps_.squaredNorm() > 0 ||
                                       alpha_radps2_.squaredNorm() > 0);
   for (std::size_t i = 0; i < n; ++i) {

@@ -44,6 +44,9 @@ void checkSolverParams(const SolverParams& params) {
   requireNonNegative(params.damping_per_s, "damping_per_s");
   requireNonNegative(params.inertial_scale, "inertial_scale");
   requireNonNegative(params.contact_margin_m, "contact_margin_m");
+  if (std::isnan(params.max_depenetration_mps) || !(params.max_depenetration_mps > 0))
+    throw InputError("max_depenetration_mps: must be > 0 (infinite: no cap) (got " +
+                     std::to_string(params.max_depenetration_mps) + ")");
   requireNonNegative(params.sleep_speed_mps, "sleep_speed_mps");
   requireNonNegative(params.wake_load_mps2, "wake_load_mps2");
   if (std::isnan(params.sleep_delay_s)) throw InputError("sleep_delay_s: must not be NaN");

@@ -106,6 +106,11 @@ TEST_CASE("values out of range are refused naming file and key path", "[scenes]"
   doc = minimalScene();
   doc["camera"] = {{"follow", 3}};
   CHECK_THAT(refusal(doc), Catch::Contains("camera.follow: must be in [0, 0] (got 3)"));
+  doc = minimalScene();
+  doc["vehicle"]["deformation"] = {{"max_depenetration_mps", 0}};
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.max_depenetration_mps: must be in"));
+  doc["vehicle"]["deformation"] = {{"max_depenetration_mps", 3}};
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.max_depenetration_mps == 3);
 }
 
 TEST_CASE("missing keys and missing files are refused naming file and key path", "[scenes]") {

@@ -83,6 +83,8 @@ void checkDeformationSettings(const DeformationSettings& s) {
   require(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0", s.damping);
   require(std::isfinite(s.contact_friction) && s.contact_friction >= 0, "contact_friction",
           "must be finite and >= 0", s.contact_friction);
+  require(s.max_depenetration_mps > 0, "max_depenetration_mps", "must be > 0 (infinite: no cap)",
+          s.max_depenetration_mps);
   require(std::isfinite(s.crush_allowance_m) && s.crush_allowance_m >= 0, "crush_allowance_m",
           "must be finite and >= 0", s.crush_allowance_m);
   require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
@@ -112,6 +114,7 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   params.substeps = static_cast<uint32_t>(deformation.substeps);
   params.iterations = static_cast<uint32_t>(deformation.iterations);
   params.damping_per_s = deformation.damping;
+  params.max_depenetration_mps = deformation.max_depenetration_mps;
   params.yield_limited = deformation.yield_limited;
   // Crush: the shell's inertia is real, at full scale; Visual: the paper's scaled fictitious forces.
   params.inertial_scale = deformation.coupling == Coupling::Crush ? 1.0 : deformation.inertial_scale;

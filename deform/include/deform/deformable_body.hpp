@@ -171,6 +171,11 @@ class DeformableBody {
     Eigen::Matrix3d inertia_kgm2 = Eigen::Matrix3d::Zero();
   };
   RigidMoments rigid_moments_;
+  /// Sum over the columns (or spokes) of w_core / (w_point + w_core): the share of its correction each
+  /// hands the core, summed. Above 1 (a shell heavier than its core) their summed move overshoots.
+  double core_share_sum_ = 0;
+  /// max(1, shell mass x w_core): by how much the drag's summed reaction on the core would overshoot.
+  double drag_split_ = 1;
   double last_substep_s_ = 0;  ///< h of the last substep (carriedElasticEnergy_J)
   /// carriedElasticEnergy_J of the last substep, or negative until asked (a sleeping body's stays).
   mutable double carried_elastic_J_ = -1;
@@ -213,7 +218,8 @@ class DeformableBody {
   Eigen::Vector3d obstacleVelocity(const StepInputs& inputs, uint32_t shape,
                                    const Eigen::Vector3d& p_m) const;
   /// Appends the face contacts of one obstacle; returns how many.
-  uint32_t findFaceContacts(const ContactShape& shape, uint32_t shape_index);
+  uint32_t findFaceContacts(const ContactShape& shape, uint32_t shape_index, const StepInputs& inputs,
+                            double h);
 
   std::shared_ptr<const BodySettings> settings_;
   SolverParams params_;

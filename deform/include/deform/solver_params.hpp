@@ -22,6 +22,12 @@ struct SolverParams {
   /// Points closer than this to an obstacle [m] get a contact constraint for the substep (inactive until
   /// violated), so a point resting on a surface stays there instead of jittering in and out. >= 0.
   double contact_margin_m = 0.01;
+  /// A point (or a point of a face) that begins a substep inside an obstacle is pushed out of that depth
+  /// at most this fast [m/s]; motion further in is still stopped in full. Without it, an obstacle placed
+  /// deep in the body (a teleport, a body started inside) throws the points out at depth / h, however small
+  /// the substep h (0.2 m at h = 1.6e-7 s: 1e6 m/s). The cap on resolving overlap of Box2D v3
+  /// (`contactPushMaxVelocity`, 3 m/s) and PhysX (`maxDepenetrationVelocity`). Infinite: no cap. > 0.
+  double max_depenetration_mps = 10.0;
   /// Force-limited constraints: no constraint carries more than its yield force (the multiplier is
   /// clamped, as a motor's maximum impulse), so what the solve cannot hold flows plastically at the yield
   /// force and the plastic work is the energy the body took; a held point at its deviation cap then stops

@@ -71,6 +71,9 @@ struct DeformationSettings {
   double damping = 80.0;
   /// Coulomb friction of control points sliding on what they hit [-].
   double contact_friction = 0.3;
+  /// Fastest a control point that begins a substep inside an obstacle is pushed out of it [m/s]
+  /// (deform::SolverParams::max_depenetration_mps).
+  double max_depenetration_mps = 10.0;
   /// Crush with backstop ShrunkHull: intrusion of the chassis hull into what it hits beyond which ODE's rigid
   /// contact takes over (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below
   /// max_deviation_m.
