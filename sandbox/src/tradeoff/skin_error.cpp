@@ -1,5 +1,6 @@
 #include "tradeoff/skin_error.hpp"
 
+#include "tradeoff/crash_field.hpp"
 #include "tradeoff/known_fields.hpp"
 
 #include <deform/builtin_meshes.hpp>
@@ -21,7 +22,8 @@ SkinErrorOptions SkinErrorOptions::quick() {
 std::vector<SkinErrorRow> runSkinError(const SkinErrorOptions& options) {
   const deform::VehicleModel car = deform::makeSedan(options.vertices);
   const std::vector<Eigen::Vector3f>& rest = car.body.positions_m;
-  const std::vector<KnownField> fields = knownFields(deform::boundingBox(car.body));
+  std::vector<KnownField> fields = knownFields(deform::boundingBox(car.body));
+  if (options.crash_points > 0) fields.push_back(wallCrashField(options.crash_points));
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : rest) points.push_back(p.cast<double>());
   // The exact answer: each field applied to every render vertex.

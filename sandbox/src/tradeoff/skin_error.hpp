@@ -10,7 +10,7 @@ namespace sandbox {
 
 /// One skin (N, K, alpha, method) on one field, measured over the render mesh.
 struct SkinErrorRow {
-  std::string field;               ///< "bend", "twist", "crush", "affine"
+  std::string field;               ///< "bend", "twist", "crush", "affine", "wall_crash"
   std::string method;              ///< "idw" or "mls"
   std::size_t control_points = 0;  ///< N as built (within 5 % of the target)
   std::size_t target_points = 0;   ///< N asked for
@@ -26,6 +26,9 @@ struct SkinErrorOptions {
   std::vector<std::size_t> control_points = {60, 120, 250, 500, 1000, 2000};
   std::vector<std::size_t> k = {4, 8, 16};
   std::vector<double> alpha = {2, 3.5, 6};
+  /// Control points of the finest model whose wall-crash dent is the field "wall_crash"
+  /// (tradeoff/crash_field.hpp); 0 leaves that field out.
+  std::size_t crash_points = 2000;
   /// Fewer N (60, 250, 1000).
   static SkinErrorOptions quick();
 };

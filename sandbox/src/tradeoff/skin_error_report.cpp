@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kAlpha = 3.5;  // the balanced preset's power, for the tables against N and K
 constexpr std::size_t kK = 8;
-const char* const kFields[] = {"bend", "twist", "crush", "affine"};
+const char* const kFields[] = {"bend", "twist", "crush", "affine", "wall_crash"};
 const char* const kMethods[] = {"idw", "mls"};
 
 /// Millimetres with three significant figures (the affine rows of mls are near float rounding).
@@ -101,9 +101,9 @@ void plotErrors(const std::vector<SkinErrorRow>& rows, const std::string& dir, b
   const std::string base = dir + "/" + name;
   const std::vector<std::size_t> ks = distinct(rows, &SkinErrorRow::k);
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1200,900 font 'DejaVu Sans,11' noenhanced\n"
+  gp << "set terminal pngcairo size 1200,1300 font 'DejaVu Sans,11' noenhanced\n"
      << "set output " << gnuplotQuoted(base + ".png") << "\n"
-     << "set multiplot layout 2,2 title "
+     << "set multiplot layout 3,2 title "
      << gnuplotQuoted(std::string("The skin alone: ") + (largest ? "largest" : "RMS") +
                       " render-vertex error against N on known fields (builtin:sedan, 20,000 vertices, "
                       "alpha = 3.5)")
@@ -180,6 +180,10 @@ std::string skinErrorMarkdown(const std::vector<SkinErrorRow>& rows, const std::
      << "y' = y - y_c about the bounding box's centre, L = length, W = width.\n\n";
   for (const KnownField& f : knownFields(deform::Aabb{}))
     md << "- **" << f.name << "**: " << f.formula << "\n";
+  if (std::any_of(rows.begin(), rows.end(), [](const SkinErrorRow& r) { return r.field == "wall_crash"; }))
+    md << "- **wall_crash**: the residual dent of `wall_crash` (56 km/h) at the finest model's control "
+          "points, "
+          "smoothed by a Gaussian kernel average (tradeoff/crash_field.hpp)\n";
   const std::vector<std::size_t> ns = distinct(rows, &SkinErrorRow::target_points);
   if (ns.empty()) return md.str();
   targetTable(md, rows, ns.front());
