@@ -50,12 +50,9 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
   for (DeformableBody* b : bodies_) {
     substeps = std::max(substeps, b->params_.substeps);
     iterations = std::max(iterations, b->params_.iterations);
-    longest_s = std::min(longest_s, b->params_.longest_group_substep_s);
+    longest_s = std::min(longest_s, b->params_.longest_contact_substep_s);
   }
-  // Substeps no longer than the bodies allow in contact (the relative slack keeps dt / h = 4.000...01
-  // at 4).
-  const double needed = std::ceil(dt_s_ / longest_s * (1.0 - 1e-9));
-  if (needed > substeps) substeps = static_cast<uint32_t>(std::min(needed, 4096.0));
+  substeps = substepsNoLongerThan(dt_s_, substeps, longest_s);  // the bodies are in contact
   for (std::size_t i = 0; i < count; ++i) body(static_cast<uint32_t>(i)).beginStep(*inputs[i], dt_s_, true);
   h_s_ = dt_s_ / static_cast<double>(substeps);
   for (DeformableBody* b : bodies_) {

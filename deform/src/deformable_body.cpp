@@ -85,7 +85,7 @@ bool DeformableBody::loadChanged() const {
 
 StepReport DeformableBody::step(const StepInputs& inputs, double dt_s) {
   if (beginStep(inputs, dt_s, false)) {
-    for (uint32_t k = 1; k <= params_.substeps; ++k) {
+    for (uint32_t k = 1; k <= substeps_; ++k) {
       beginSubstep(k);
       for (uint32_t it = 0; it < params_.iterations; ++it) iterate();
       settleSubstep();
@@ -160,7 +160,9 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   drag_split_ = std::max(1.0, core_inverse_mass_per_kg_ * shell_kg);
   core_shift_m_.setZero();
   core_velocity_mps_.setZero();
-  substeps_ = params_.substeps;
+  substeps_ = inputs.contacts.empty()
+                  ? params_.substeps
+                  : substepsNoLongerThan(dt_s, params_.substeps, params_.longest_contact_substep_s);
   h_s_ = dt_s / static_cast<double>(substeps_);
   return true;
 }

@@ -3,6 +3,7 @@
 #include <deform/material.hpp>
 #include <deform/solver_params.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -38,15 +39,20 @@ void checkMaterial(const Material& material, const std::string& field) {
                      std::to_string(material.max_rest_fraction) + ")");
 }
 
+uint32_t substepsNoLongerThan(double dt_s, uint32_t substeps, double longest_s) {
+  const double needed = std::ceil(dt_s / longest_s * (1.0 - 1e-9));
+  return needed > substeps ? static_cast<uint32_t>(std::min(needed, 4096.0)) : substeps;
+}
+
 void checkSolverParams(const SolverParams& params) {
   if (params.substeps < 1) throw InputError("substeps: must be at least 1 (got 0)");
   if (params.iterations < 1) throw InputError("iterations: must be at least 1 (got 0)");
   requireNonNegative(params.damping_per_s, "damping_per_s");
   requireNonNegative(params.inertial_scale, "inertial_scale");
   requireNonNegative(params.contact_margin_m, "contact_margin_m");
-  if (std::isnan(params.longest_group_substep_s) || !(params.longest_group_substep_s > 0))
-    throw InputError("longest_group_substep_s: must be > 0 (infinite: substeps alone) (got " +
-                     std::to_string(params.longest_group_substep_s) + ")");
+  if (std::isnan(params.longest_contact_substep_s) || !(params.longest_contact_substep_s > 0))
+    throw InputError("longest_contact_substep_s: must be > 0 (infinite: substeps alone) (got " +
+                     std::to_string(params.longest_contact_substep_s) + ")");
   if (std::isnan(params.max_depenetration_mps) || !(params.max_depenetration_mps > 0))
     throw InputError("max_depenetration_mps: must be > 0 (infinite: no cap) (got " +
                      std::to_string(params.max_depenetration_mps) + ")");

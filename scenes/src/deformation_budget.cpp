@@ -125,10 +125,11 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // (deform::stepGroup); the group solve costs 3-5x less (0.103 / 0.213 / 0.707 / 1.49 / 3.03 ms, median
   // of three; docs/BENCHMARKS.md), but with those figures the planner gives traffic's three-car pile 250
   // points, where the bodies passed into each other and left -19 / -22 % of their energy unexplained
-  // (docs/CRASH_CALIBRATION.md, "Two cars, one solve"). From 250 points a group now takes substeps of at
-  // most 0.5 ms (vehicle's groupSubstep_s), which closes that pile within 5 % at 120 Hz but costs up to 4x
-  // the group solve's 4 x 2 below 500 Hz; the higher figures still bound that. A budget that
-  // over-estimates chooses coarser levels, never a broken one.
+  // (docs/CRASH_CALIBRATION.md, "Two cars, one solve"). From 250 points a step in contact now takes substeps
+  // of at most 0.5 ms (vehicle's contactSubstep_s), which closes that pile within 5 % at 120 Hz but costs up
+  // to 4x the group solve's 4 x 2 below 500 Hz; the higher figures still bound that. A budget that
+  // over-estimates chooses coarser levels, never a broken one. The obstacle column does not yet follow
+  // that cap: at 120 Hz a 250-point car or finer against an obstacle takes 17 substeps, not 4 (open).
   static const std::vector<DeformationLevel> levels = {
       {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.34},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.69},
       {"accurate", 250, 8, 4, 2, 0.166, 0.18, 3.5}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 8.4},

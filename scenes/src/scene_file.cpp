@@ -128,7 +128,8 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.damping = object->number("damping", s.damping, 0, 1000);
     s.contact_friction = object->number("contact_friction", s.contact_friction, 0, 10);
     s.max_depenetration_mps = object->number("max_depenetration_mps", s.max_depenetration_mps, 0.01, 1e9);
-    s.longest_group_substep_s = object->number("longest_group_substep_s", s.longest_group_substep_s, 0, 1);
+    s.longest_contact_substep_s =
+        object->number("longest_contact_substep_s", s.longest_contact_substep_s, 0, 1);
     s.crush_allowance_m = object->number("crush_allowance_m", s.crush_allowance_m, 0, 10);
     s.backstop = object->choice("backstop", std::string("rigid_parts"), {"rigid_parts", "shrunk_hull"}) ==
                          "shrunk_hull"

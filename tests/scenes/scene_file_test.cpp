@@ -111,8 +111,8 @@ TEST_CASE("values out of range are refused naming file and key path", "[scenes]"
   CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.max_depenetration_mps: must be in"));
   doc["vehicle"]["deformation"] = {{"max_depenetration_mps", 3}};
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.max_depenetration_mps == 3);
-  doc["vehicle"]["deformation"] = {{"longest_group_substep_s", -1e-3}};
-  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.longest_group_substep_s: must be in"));
+  doc["vehicle"]["deformation"] = {{"longest_contact_substep_s", -1e-3}};
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.longest_contact_substep_s: must be in"));
 }
 
 TEST_CASE("missing keys and missing files are refused naming file and key path", "[scenes]") {

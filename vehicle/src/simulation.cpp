@@ -22,16 +22,17 @@ void require(bool ok, const char* member, const std::string& rule, double value)
   if (!ok) throw deform::InputError(field(member) + ": " + rule + " (got " + std::to_string(value) + ")");
 }
 
-/// The longest substep of a solve with another car (deform::SolverParams::longest_group_substep_s) [s].
-/// Unset (0): 0.5 ms from 250 control points up, none below. Measured in traffic's pile of four cars at
-/// 120 Hz (4 substeps of 2.1 ms), the runner's unexplained energy against its initial kinetic energy:
-/// 1,000 points -2150 % -> -8 %, 250 points -488 % -> -5 %; at 60 points the shorter substeps made it
-/// worse (-11 % -> -46 %), so the coarse levels keep their own (docs/CRASH_CALIBRATION.md, "Two cars,
-/// one solve").
-double groupSubstep_s(const DeformationSettings& s) {
+/// The longest substep of a step with something in contact (deform::SolverParams::
+/// longest_contact_substep_s) [s]. Unset (0): 0.5 ms from 250 control points up, none below. Measured at
+/// 120 Hz (4 substeps of 2.1 ms), unexplained energy against the car's initial kinetic energy: traffic's
+/// pile of four cars, the runner at 1,000 points -2150 % -> -8 %, at 250 points -488 % -> -5 %; east4
+/// against its tree at 250 points -17 % -> +0.8 %. At 60 points the shorter substeps made the pile worse
+/// (-11 % -> -46 %), so the coarse levels keep their own (docs/CRASH_CALIBRATION.md, "Two cars, one
+/// solve").
+double contactSubstep_s(const DeformationSettings& s) {
   constexpr std::size_t kFinestWithout = 250;
   constexpr double kLongestFine_s = 0.5e-3;
-  if (s.longest_group_substep_s > 0) return s.longest_group_substep_s;
+  if (s.longest_contact_substep_s > 0) return s.longest_contact_substep_s;
   return s.control_points >= kFinestWithout ? kLongestFine_s : HUGE_VAL;
 }
 
@@ -98,8 +99,8 @@ void checkDeformationSettings(const DeformationSettings& s) {
           "must be finite and >= 0", s.contact_friction);
   require(s.max_depenetration_mps > 0, "max_depenetration_mps", "must be > 0 (infinite: no cap)",
           s.max_depenetration_mps);
-  require(s.longest_group_substep_s >= 0, "longest_group_substep_s",
-          "must be >= 0 (0: by the control points)", s.longest_group_substep_s);
+  require(s.longest_contact_substep_s >= 0, "longest_contact_substep_s",
+          "must be >= 0 (0: by the control points)", s.longest_contact_substep_s);
   require(std::isfinite(s.crush_allowance_m) && s.crush_allowance_m >= 0, "crush_allowance_m",
           "must be finite and >= 0", s.crush_allowance_m);
   require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
@@ -130,7 +131,7 @@ CarId Simulation::addDeformableCar(const deform::VehicleModel& model, const Vehi
   params.iterations = static_cast<uint32_t>(deformation.iterations);
   params.damping_per_s = deformation.damping;
   params.max_depenetration_mps = deformation.max_depenetration_mps;
-  params.longest_group_substep_s = groupSubstep_s(deformation);
+  params.longest_contact_substep_s = contactSubstep_s(deformation);
   params.yield_limited = deformation.yield_limited;
   // Crush: the shell's inertia is real, at full scale; Visual: the paper's scaled fictitious forces.
   params.inertial_scale = deformation.coupling == Coupling::Crush ? 1.0 : deformation.inertial_scale;

@@ -29,12 +29,13 @@ struct SolverParams {
   /// the substep h (0.2 m at h = 1.6e-7 s: 1e6 m/s). The cap on resolving overlap of Box2D v3
   /// (`contactPushMaxVelocity`, 3 m/s) and PhysX (`maxDepenetrationVelocity`). Infinite: no cap. > 0.
   double max_depenetration_mps = 10.0;
-  /// Bodies stepped as one (stepGroup: two cars in contact) take substeps no longer than this [s], more
-  /// than `substeps` where the step needs it. Infinite (the default): `substeps` alone. > 0. Two fine
-  /// surfaces pressed together at long substeps were not held apart by the iterations: a pile of four
-  /// 1,000-point cars at 120 Hz, 4 substeps of 2.1 ms, left 21 times its kinetic energy unexplained; at 0.5
-  /// ms the runner closes within 8 % (docs/CRASH_CALIBRATION.md, "Two cars, one solve").
-  double longest_group_substep_s = HUGE_VAL;
+  /// A step with something in contact (an obstacle, or another body stepped as one with it: stepGroup)
+  /// takes substeps no longer than this [s], more than `substeps` where the step needs it. Infinite (the
+  /// default): `substeps` alone. > 0. Fine bodies in contact at long substeps were not held by the
+  /// iterations: a pile of four 1,000-point cars at 120 Hz, 4 substeps of 2.1 ms, left 21 times the
+  /// runner's kinetic energy unexplained, 8 % at 0.5 ms; a 250-point car against a tree -17 %, +0.8 % at
+  /// 0.5 ms (docs/CRASH_CALIBRATION.md, "Two cars, one solve").
+  double longest_contact_substep_s = HUGE_VAL;
   /// Force-limited constraints: no constraint carries more than its yield force (the multiplier is
   /// clamped, as a motor's maximum impulse), so what the solve cannot hold flows plastically at the yield
   /// force and the plastic work is the energy the body took; a held point at its deviation cap then stops
@@ -50,6 +51,10 @@ struct SolverParams {
   /// acceleration [rad/s^2] times 1 m) since the body fell asleep that wakes it.
   double wake_load_mps2 = 0.05;
 };
+
+/// Substeps for a step of `dt_s` asked to take `substeps`, none longer than `longest_s`: `substeps`, or
+/// more (at most 4096). The relative slack keeps dt / h = 4.000...01 at 4.
+uint32_t substepsNoLongerThan(double dt_s, uint32_t substeps, double longest_s);
 
 /// Throws InputError naming the member for substeps or iterations of 0, or a negative or non-finite
 /// damping, inertial scale or sleep speed.

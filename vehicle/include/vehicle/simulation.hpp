@@ -74,10 +74,10 @@ struct DeformationSettings {
   /// Fastest a control point that begins a substep inside an obstacle is pushed out of it [m/s]
   /// (deform::SolverParams::max_depenetration_mps).
   double max_depenetration_mps = 10.0;
-  /// Longest substep of a solve with another deformable car in contact [s]
-  /// (deform::SolverParams::longest_group_substep_s); 0: 0.5 ms from 250 control points up, else the
-  /// substeps alone (measured in a pile of cars, docs/CRASH_CALIBRATION.md, "Two cars, one solve").
-  double longest_group_substep_s = 0;
+  /// Longest substep of a step with an obstacle or another deformable car in contact [s]
+  /// (deform::SolverParams::longest_contact_substep_s); 0: 0.5 ms from 250 control points up, else the
+  /// substeps alone (measured at 120 Hz, docs/CRASH_CALIBRATION.md, "Two cars, one solve").
+  double longest_contact_substep_s = 0;
   /// Crush with backstop ShrunkHull: intrusion of the chassis hull into what it hits beyond which ODE's rigid
   /// contact takes over (the crush stroke is used up: an engine block, a bulkhead) [m]. Kept below
   /// max_deviation_m.
