@@ -147,16 +147,24 @@ TEST_CASE("A bad link is refused, naming it", "[dynamics]") {
   CHECK_THROWS_WITH(stepGroup({&a, &b}, {&in, &in}, {link}, 0.01), Catch::Contains("friction"));
 }
 
+/// A 60-point sedan body with a 400 kg shell and anchored columns, and how far its front is from its core
+/// along x [m].
+std::pair<std::shared_ptr<const BodySettings>, double> sedanShell60() {
+  const ControlMesh mesh = sedanControlMesh(60);
+  BodyDescription description;
+  description.anchored_columns = true;
+  double front = -1e9;
+  for (const auto& p : mesh.points_m) front = std::max(front, p.x());
+  return {makeSettings(mesh, 400.0, description), front};
+}
+
 TEST_CASE("A body against an obstacle takes substeps no longer than longest_contact_substep_s",
           "[dynamics]") {
   // A wall met at 8 m/s at 120 Hz: 4 substeps capped at a twelfth of the step are 12 substeps, bit for
   // bit; with nothing in contact the cap does nothing.
-  const ControlMesh mesh = sedanControlMesh(60);
-  BodyDescription description;
-  description.anchored_columns = true;
-  const auto settings = makeSettings(mesh, 400.0, description);
-  double front = -1e9;
-  for (const auto& p : mesh.points_m) front = std::max(front, p.x());
+  const auto shell = sedanShell60();  // no structured binding: clang 14 cannot capture one in a lambda
+  const std::shared_ptr<const BodySettings>& settings = shell.first;
+  const double front = shell.second;
   const double dt = 1.0 / 120;
   auto drive = [&](uint32_t substeps, double longest_s, bool wall) {
     SolverParams params;
@@ -188,12 +196,9 @@ TEST_CASE("A body against an obstacle takes substeps no longer than longest_cont
 TEST_CASE("A group's substeps are no longer than its bodies' longest_contact_substep_s", "[dynamics]") {
   // Two bodies meeting head-on at 120 Hz: 4 substeps capped at a twelfth of the step are the same solve,
   // bit for bit, as 12 substeps asked for; the cap is checked like the other knobs.
-  const ControlMesh mesh = sedanControlMesh(60);
-  BodyDescription description;
-  description.anchored_columns = true;
-  const auto settings = makeSettings(mesh, 400.0, description);
-  double front = -1e9;
-  for (const auto& p : mesh.points_m) front = std::max(front, p.x());
+  const auto shell = sedanShell60();  // no structured binding: clang 14 cannot capture one in a lambda
+  const std::shared_ptr<const BodySettings>& settings = shell.first;
+  const double front = shell.second;
   const double dt = 1.0 / 120;
   auto meet = [&](uint32_t substeps, double longest_s) {
     SolverParams params;
