@@ -148,16 +148,20 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
     state_.velocities_mps[impulse.point] += impulse.impulse_Ns * settings.inverse_mass_per_kg[impulse.point];
 
   core_inverse_mass_per_kg_ = std::isfinite(inputs.core_mass_kg) ? 1.0 / inputs.core_mass_kg : 0.0;
-  // How far the core's summed reactions would overshoot (sweepConstraints, beginSubstep's drag).
-  core_share_sum_ = 0;
-  double shell_kg = 0;
-  if (core_inverse_mass_per_kg_ > 0) {
-    for (const SpokeConstraint& c : settings.spokes)
-      core_share_sum_ +=
-          core_inverse_mass_per_kg_ / (settings.inverse_mass_per_kg[c.point] + core_inverse_mass_per_kg_);
-    for (double m : settings.mass_kg) shell_kg += m;
+  // How far the core's summed reactions would overshoot (sweepConstraints, beginSubstep's drag): a
+  // function of the masses alone, found again only when the core's mass changes.
+  if (!(inputs.core_mass_kg == overshoot_core_mass_kg_)) {
+    overshoot_core_mass_kg_ = inputs.core_mass_kg;
+    core_share_sum_ = 0;
+    double shell_kg = 0;
+    if (core_inverse_mass_per_kg_ > 0) {
+      for (const SpokeConstraint& c : settings.spokes)
+        core_share_sum_ +=
+            core_inverse_mass_per_kg_ / (settings.inverse_mass_per_kg[c.point] + core_inverse_mass_per_kg_);
+      for (double m : settings.mass_kg) shell_kg += m;
+    }
+    drag_split_ = std::max(1.0, core_inverse_mass_per_kg_ * shell_kg);
   }
-  drag_split_ = std::max(1.0, core_inverse_mass_per_kg_ * shell_kg);
   core_shift_m_.setZero();
   core_velocity_mps_.setZero();
   substeps_ = inputs.contacts.empty()

@@ -126,8 +126,8 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // of three; docs/BENCHMARKS.md), but with those figures the planner gives traffic's three-car pile 250
   // points, where the bodies passed into each other and left -19 / -22 % of their energy unexplained
   // (docs/CRASH_CALIBRATION.md, "Two cars, one solve"). From 250 points a step in contact now takes substeps
-  // of at most 0.5 ms (vehicle's contactSubstep_s), which closes that pile within 5 % at 120 Hz but costs up
-  // to 4x the group solve's 4 x 2 below 500 Hz; the higher figures still bound that. A budget that
+  // of at most 0.5 ms (vehicle's contactSubstep_s), which closes that pile within 5.1 % at 120 Hz but costs
+  // up to 4x the group solve's 4 x 2 below 500 Hz; the higher figures still bound that. A budget that
   // over-estimates chooses coarser levels, never a broken one. The obstacle column does not yet follow
   // that cap: at 120 Hz a 250-point car or finer against an obstacle takes 17 substeps, not 4 (open).
   static const std::vector<DeformationLevel> levels = {

@@ -11,6 +11,7 @@
 #include <deform/step_inputs.hpp>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -176,6 +177,8 @@ class DeformableBody {
   double core_share_sum_ = 0;
   /// max(1, shell mass x w_core): by how much the drag's summed reaction on the core would overshoot.
   double drag_split_ = 1;
+  /// The core mass the two above were found for [kg] (NaN: not yet).
+  double overshoot_core_mass_kg_ = std::numeric_limits<double>::quiet_NaN();
   double last_substep_s_ = 0;  ///< h of the last substep (carriedElasticEnergy_J)
   /// carriedElasticEnergy_J of the last substep, or negative until asked (a sleeping body's stays).
   mutable double carried_elastic_J_ = -1;

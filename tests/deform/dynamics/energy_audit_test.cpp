@@ -9,8 +9,6 @@
 #include <deform/deformable_body.hpp>
 #include <deform/masses.hpp>
 
-#include <cmath>
-
 using namespace deform;
 using dynamics_test::driveObstacle;
 using dynamics_test::EnergyAccount;
