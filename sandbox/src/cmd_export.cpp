@@ -2,6 +2,7 @@
 // mesh (assimp's exporter), wheels at their rest hubs, to open in any 3D tool: in the vehicle frame, or
 // the same mesh placed rigidly at the car's world pose at T (to put beside the scene's obstacles).
 #include <deform/mesh_export.hpp>
+#include <deform/path_checks.hpp>
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -29,7 +30,7 @@ void exportScene(const ExportOptions& options) {
     throw deform::InputError("--frame: must be vehicle or world (got '" + options.frame + "')");
   }
   const fs::path parent = fs::path(options.out).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) {
+  if (!parent.empty() && !deform::isDirectory(parent)) {
     throw deform::InputError("--out: folder " + parent.string() + " does not exist");
   }
   std::vector<scenes::Override> overrides;

@@ -3,6 +3,7 @@
 #include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
+#include <deform/path_checks.hpp>
 #include <deform/skin.hpp>
 
 #include <algorithm>
@@ -77,10 +78,10 @@ void runMeshRender(const MeshRenderFlags& flags) {
   if (flags.control_points < 4) throw deform::InputError("--control-points: must be at least 4");
   if (!(flags.alpha > 0 && flags.alpha <= 64)) throw deform::InputError("--alpha: must be in (0, 64]");
   const std::filesystem::path out(flags.out);
-  if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path())) {
+  if (out.has_parent_path() && !deform::isDirectory(out.parent_path())) {
     throw deform::InputError("--out: folder " + out.parent_path().string() + " does not exist");
   }
-  if (std::filesystem::is_directory(out)) throw deform::InputError("--out: " + flags.out + " is a folder");
+  if (deform::isDirectory(out)) throw deform::InputError("--out: " + flags.out + " is a folder");
   const float aspect = static_cast<float>(flags.width) / static_cast<float>(flags.height);
   render::presetCamera(flags.camera, deform::Aabb{{-1, -1, -1}, {1, 1, 1}}, aspect);  // name check first
 

@@ -5,6 +5,7 @@
 #include <scenes/scene_run.hpp>
 
 #include <deform/error.hpp>
+#include <deform/path_checks.hpp>
 
 #include <unistd.h>
 #include <algorithm>
@@ -88,10 +89,11 @@ fs::path prepareOutput(const std::string& dir, bool frames) {
   const fs::path out(dir);
   std::error_code ec;
   fs::create_directories(out, ec);
-  if (ec || !fs::is_directory(out)) throw deform::InputError("--out: cannot create folder " + dir);
+  if (ec || !deform::isDirectory(out))
+    throw deform::InputError("--out: cannot create folder " + dir + (ec ? " (" + ec.message() + ")" : ""));
   // Frames and a video of an earlier run must not pass for this run's.
   fs::remove(out / "video.mp4", ec);
-  if (fs::is_directory(out / "frames")) {
+  if (deform::isDirectory(out / "frames")) {
     for (const auto& entry : fs::directory_iterator(out / "frames")) {
       if (entry.path().extension() == ".png") fs::remove(entry.path());
     }
@@ -121,7 +123,7 @@ double saveTime(const std::vector<std::string>& args, double duration_s, double 
     throw deform::InputError("--save-state: T must be within the scene, 0 to " + std::to_string(duration_s) +
                              " s (got " + args[0] + ")");
   const fs::path folder = fs::path(args[1]).parent_path();
-  if (!folder.empty() && !fs::is_directory(folder))
+  if (!folder.empty() && !deform::isDirectory(folder))
     throw deform::InputError("--save-state: no folder " + folder.string() + " for " + args[1]);
   if (t_s < resumed_s - 1e-9)
     throw deform::InputError("--save-state: T is before the resumed state's time " +
@@ -328,7 +330,8 @@ void registerRunCommand(CLI::App& app) {
       std::printf("saved the state at t = %.4f s to %s\n", s["saved_state"]["time_s"].get<double>(),
                   options->save_state[1].c_str());
     std::printf("wrote %s/summary.json, %s/timeline.csv", result.out_dir.c_str(), result.out_dir.c_str());
-    if (s.contains("frames") && result.frames > 0 && fs::is_directory(fs::path(result.out_dir) / "frames") &&
+    if (s.contains("frames") && result.frames > 0 &&
+        deform::isDirectory(fs::path(result.out_dir) / "frames") &&
         !fs::is_empty(fs::path(result.out_dir) / "frames")) {
       std::printf(", %d frames in %s/frames", result.frames, result.out_dir.c_str());
     }

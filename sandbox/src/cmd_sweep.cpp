@@ -16,6 +16,7 @@
 #include "tradeoff/tradeoff.hpp"
 
 #include <deform/error.hpp>
+#include <deform/path_checks.hpp>
 
 namespace sandbox {
 namespace {
@@ -48,7 +49,7 @@ struct MergeFlags {
 // The plan checked whole before anything is written, then written atomically.
 void writePlan(const SweepPlan& plan, const std::string& out) {
   const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
-  if (!std::filesystem::is_directory(parent)) throw deform::InputError("--out: no folder " + parent.string());
+  if (!deform::isDirectory(parent)) throw deform::InputError("--out: no folder " + parent.string());
   writeAtomically(out, planText(plan));
   std::printf("wrote %s: %zu cases of a %s sweep\n", out.c_str(), plan.cases.size(), plan.kind.c_str());
 }

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 int main(int argc, char** argv) {
@@ -39,6 +40,11 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   } catch (const deform::InputError& e) {
+    std::fprintf(stderr, "sandbox: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the system cannot use (a name over 255 bytes, no permission, not a folder) is the user's to
+    // change; what() names the operation, the path and the reason.
     std::fprintf(stderr, "sandbox: %s\n", e.what());
     return 2;
   } catch (const sandbox::CommandFailure& e) {

@@ -4,6 +4,7 @@
 
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
+#include <deform/path_checks.hpp>
 
 #include <algorithm>
 #include <cstdlib>
@@ -50,7 +51,7 @@ std::string resolveMeshPath(const std::string& spec, JsonObject& object, const s
   }
   fs::path p(path);
   if (p.is_relative()) p = fs::path(base_dir) / p;
-  if (!fs::is_regular_file(p)) object.fail(key, "file not found: " + p.string());
+  if (!deform::isRegularFile(p)) object.fail(key, "file not found: " + p.string());
   return p.string();
 }
 
@@ -436,11 +437,12 @@ void applyOverride(json& document, const Override& override) {
 
 std::string shippedScenesDir() {
 #ifdef DEFORM_SCENES_DIR
-  if (fs::is_directory(DEFORM_SCENES_DIR)) return DEFORM_SCENES_DIR;
+  if (deform::isDirectory(DEFORM_SCENES_DIR)) return DEFORM_SCENES_DIR;
 #endif
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::is_directory(exe.parent_path() / "scenes")) return (exe.parent_path() / "scenes").string();
+  if (!ec && deform::isDirectory(exe.parent_path() / "scenes"))
+    return (exe.parent_path() / "scenes").string();
   return "scenes";
 }
 
@@ -514,12 +516,12 @@ json parseRefusingDuplicates(const std::string& text, const std::string& source)
 }
 
 std::string resolveScenePath(const std::string& name_or_path) {
-  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  if (deform::isRegularFile(name_or_path)) return name_or_path;
   const bool bare_name = name_or_path.find('/') == std::string::npos && !name_or_path.empty();
   if (bare_name) {
     fs::path shipped = fs::path(shippedScenesDir()) / name_or_path;
     if (shipped.extension() != ".json") shipped += ".json";
-    if (fs::is_regular_file(shipped)) return shipped.string();
+    if (deform::isRegularFile(shipped)) return shipped.string();
   }
   std::string names;
   for (const std::string& n : shippedSceneNames()) names += (names.empty() ? "" : ", ") + n;

@@ -1,6 +1,7 @@
 #include "render/frame_output.hpp"
 
 #include <deform/error.hpp>
+#include <deform/path_checks.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -8,7 +9,7 @@
 namespace sandbox::render {
 
 FrameOutput::FrameOutput(const FrameOutputSettings& settings) : settings_(settings) {
-  if (!settings_.png_folder.empty() && !std::filesystem::is_directory(settings_.png_folder)) {
+  if (!settings_.png_folder.empty() && !deform::isDirectory(settings_.png_folder)) {
     throw deform::InputError(settings_.png_folder + ": frame folder does not exist");
   }
   if (!settings_.video_path.empty())

@@ -4,6 +4,7 @@
 #include <vehicle/world.hpp>
 
 #include <deform/error.hpp>
+#include <deform/path_checks.hpp>
 
 #include <unistd.h>
 
@@ -144,7 +145,7 @@ SweepPlan parsePlan(const std::string& text, const std::string& path) {
 
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) throw deform::InputError(path + ": cannot read");
+  if (!in || deform::isDirectory(path)) throw deform::InputError(path + ": cannot read");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -163,7 +164,7 @@ std::string textHash(const std::string& text) {
 
 std::string planSceneName(const std::string& name_or_path) {
   const std::string path = scenes::resolveScenePath(name_or_path);
-  if (!std::filesystem::exists(name_or_path)) return name_or_path;  // a shipped scene's name
+  if (!deform::pathExists(name_or_path)) return name_or_path;  // a shipped scene's name
   return std::filesystem::absolute(path).lexically_normal().string();
 }
 

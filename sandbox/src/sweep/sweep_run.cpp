@@ -10,6 +10,7 @@
 #include "tradeoff/tradeoff.hpp"
 
 #include <deform/error.hpp>
+#include <deform/path_checks.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -85,10 +86,10 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
   const std::string plan_id = textHash(text);
   checkProvenance(plan, plan_path, options.strict);
   const std::string& dir = options.out_dir;
-  if (fs::exists(dir) && !fs::is_directory(dir))
+  if (deform::pathExists(dir) && !deform::isDirectory(dir))
     throw deform::InputError("--out: " + dir + " is not a folder");
   const std::string kept_plan = dir + "/plan.jsonl";
-  if (fs::exists(kept_plan)) {
+  if (deform::pathExists(kept_plan)) {
     if (readWholeFile(kept_plan) != text) {
       throw deform::InputError(kept_plan + ": this folder holds the results of another plan than " +
                                plan_path + " (use another --out)");
@@ -97,7 +98,7 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
   std::error_code ec;
   fs::create_directories(dir + "/cases", ec);
   if (ec) throw deform::InputError("--out: cannot create " + dir + "/cases (" + ec.message() + ")");
-  if (!fs::exists(kept_plan)) writeAtomically(kept_plan, text);
+  if (!deform::pathExists(kept_plan)) writeAtomically(kept_plan, text);
 
   ShardSummary summary;
   for (std::size_t i = 0; i < plan.cases.size(); ++i) {
@@ -105,7 +106,7 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
     const SweepCase& c = plan.cases[i];
     ++summary.cases;
     const std::string path = casePath(dir, c);
-    if (fs::exists(path)) {
+    if (deform::pathExists(path)) {
       const nlohmann::json kept = readResult(path);
       const bool ours = kept.is_object() && field(kept, "plan_id") == plan_id && field(kept, "case") == c.id;
       const bool failed = ours && field(kept, "status") != "done";
@@ -136,9 +137,9 @@ ShardSummary runSweepShard(const std::string& plan_path, const SweepRunOptions& 
 }
 
 MergedSweep gatherSweep(const std::string& dir) {
-  if (!fs::is_directory(dir)) throw deform::InputError(dir + ": no such folder");
+  if (!deform::isDirectory(dir)) throw deform::InputError(dir + ": no such folder");
   const std::string plan_path = dir + "/plan.jsonl";
-  if (!fs::exists(plan_path))
+  if (!deform::pathExists(plan_path))
     throw deform::InputError(plan_path + ": missing (not a folder of `sandbox sweep run`)");
   const std::string text = readWholeFile(plan_path);
   MergedSweep merged{parsePlan(text, plan_path), {}};
@@ -148,7 +149,7 @@ MergedSweep gatherSweep(const std::string& dir) {
 
   std::vector<nlohmann::json> results(merged.plan.cases.size());
   std::vector<std::string> foreign;
-  if (fs::is_directory(dir + "/cases")) {
+  if (deform::isDirectory(dir + "/cases")) {
     std::set<std::string> names;  // sorted, so messages do not depend on the folder's order
     for (const fs::directory_entry& entry : fs::directory_iterator(dir + "/cases"))
       names.insert(entry.path().filename().string());
