@@ -50,7 +50,6 @@ void DeformableBody::sweepConstraints() {
   const Eigen::Vector3d* column_rest = state_.column_rest_m.data();
   const Eigen::Vector3d* normals = settings.spoke_normal.data();
   const YieldLimits* spoke_limits = settings.spoke_yield.data();
-  const auto& laws = settings.plastic_laws;
   Eigen::Vector3d& core = sub_.core;
   Eigen::Vector3d& spoke_twist = sub_.spoke_twist;
   for (std::size_t k = 0; k < edge_count; ++k) {
@@ -81,14 +80,9 @@ void DeformableBody::sweepConstraints() {
       const Eigen::Vector3d& rest = column_rest[k];
       const double alpha_tilde = c.compliance_m_per_N * inv_h2;
       if constexpr (kLimited) {
-        const Eigen::Vector3d& original = settings.rest_positions_m[i];
-        const PlasticLaw& law = laws[c.material];
-        const double taken = law.hardening * (rest - original).norm();
+        const double taken = column_taken_m_[k];    // what hardening has added to its yield, and whether it
+        const bool bottomed = column_bottomed_[k];  // has crushed to its clamp (refreshColumn)
         const double to_lambda = h2 / c.compliance_m_per_N;
-        // Crushed to its clamp, a column can flow no further in: it bottoms out, rigidly elastic (as
-        // yieldForce for a spoke).
-        const bool bottomed = normals[k].dot(original - rest) >=
-                              (1.0 - law.min_rest_fraction) * settings.spoke_rest_m[k] * (1 - 1e-12);
         projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k],
                       [&](const Eigen::Vector3d& push) {
                         // The column pushes along lambda: its point is displaced along -lambda.

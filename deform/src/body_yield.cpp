@@ -109,8 +109,13 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   // than its elastic formula says), and never more than the yield force left after the flow,
   // |l - L'| / alpha.
   const double inv_h2 = 1.0 / (h * h);
-  auto flow = [&](double length, double& rest, double original, const YieldLimits& yield, uint32_t material,
-                  double compliance, double lambda, YieldForce& carries) {
+  // Most constraints stay inside their cached elastic band (elasticBand): a squared length and two
+  // comparisons; the square root and the return map only for the rest, with the same result as always.
+  auto flow = [&](double length_m2, ElasticBand& band, double& rest, double original,
+                  const YieldLimits& yield, uint32_t material, double compliance, double lambda,
+                  YieldForce& carries) {
+    if (band.holds(length_m2)) return;
+    const double length = std::sqrt(length_m2);
     const double moved = plasticRestLength(length, rest, original, yield, laws[material]);
     if (moved == rest) return;
     if (params_.yield_limited) carries = yieldForce(compliance, moved, original, yield, laws[material]);
@@ -120,11 +125,12 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
       work_J += force_N * std::abs(moved - rest);
     }
     rest = moved;
+    band = elasticBand(moved, original, yield, laws[material]);
   };
   for (std::size_t k = 0; k < settings.edges.size(); ++k) {
     const EdgeConstraint& c = settings.edges[k];
-    flow((x[c.a] - x[c.b]).norm(), state_.edge_rest_m[k], settings.edge_rest_m[k], settings.edge_yield[k],
-         c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
+    flow((x[c.a] - x[c.b]).squaredNorm(), edge_band_[k], state_.edge_rest_m[k], settings.edge_rest_m[k],
+         settings.edge_yield[k], c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
   }
   const Eigen::Vector3d shift = core_m - settings.core_m;
   if (settings.anchored_columns) {
@@ -132,6 +138,8 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
       const SpokeConstraint& c = settings.spokes[k];
       Eigen::Vector3d& rest = state_.column_rest_m[k];
       const Eigen::Vector3d local = x[c.point] - shift;
+      // Nearly every column is elastic: skip those without a square root (columnSurelyElastic).
+      if (columnSurelyElastic(settings.spoke_normal[k], local - rest, settings.spoke_yield[k])) continue;
       const Eigen::Vector3d moved =
           plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
                             settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
@@ -142,19 +150,21 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
         work_J += force_N * (moved - rest).norm();
       }
       rest = moved;
+      refreshColumn(k);
     }
   } else {
     for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
       const SpokeConstraint& c = settings.spokes[k];
-      flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).norm(), state_.spoke_rest_m[k],
-           settings.spoke_rest_m[k], settings.spoke_yield[k], c.material, c.compliance_m_per_N,
-           spoke_lambda_[k], spoke_yield_N_[k]);
+      flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).squaredNorm(), spoke_band_[k],
+           state_.spoke_rest_m[k], settings.spoke_rest_m[k], settings.spoke_yield[k], c.material,
+           c.compliance_m_per_N, spoke_lambda_[k], spoke_yield_N_[k]);
     }
   }
   for (std::size_t k = 0; k < settings.bends.size(); ++k) {
     const BendConstraint& c = settings.bends[k];
-    flow((x[c.left] - x[c.right]).norm(), state_.bend_rest_m[k], settings.bend_rest_m[k],
-         settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k], bend_yield_N_[k]);
+    flow((x[c.left] - x[c.right]).squaredNorm(), bend_band_[k], state_.bend_rest_m[k],
+         settings.bend_rest_m[k], settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k],
+         bend_yield_N_[k]);
   }
   state_.plastic_work_J += work_J;
   report.plastic_work_J += work_J;

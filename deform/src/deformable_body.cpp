@@ -46,6 +46,21 @@ void DeformableBody::setState(BodyState state) {
 void DeformableBody::refreshYieldForces() {
   const BodySettings& s = *settings_;
   const auto& laws = s.plastic_laws;
+  edge_band_.resize(s.edges.size());
+  spoke_band_.resize(s.spokes.size());
+  bend_band_.resize(s.bends.size());
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    edge_band_[k] =
+        elasticBand(state_.edge_rest_m[k], s.edge_rest_m[k], s.edge_yield[k], laws[s.edges[k].material]);
+  for (std::size_t k = 0; k < s.spokes.size(); ++k)
+    spoke_band_[k] =
+        elasticBand(state_.spoke_rest_m[k], s.spoke_rest_m[k], s.spoke_yield[k], laws[s.spokes[k].material]);
+  column_taken_m_.resize(s.spokes.size());
+  column_bottomed_.resize(s.spokes.size());
+  for (std::size_t k = 0; k < s.spokes.size(); ++k) refreshColumn(k);
+  for (std::size_t k = 0; k < s.bends.size(); ++k)
+    bend_band_[k] =
+        elasticBand(state_.bend_rest_m[k], s.bend_rest_m[k], s.bend_yield[k], laws[s.bends[k].material]);
   edge_yield_N_.resize(s.edges.size());
   spoke_yield_N_.resize(s.spokes.size());
   bend_yield_N_.resize(s.bends.size());
@@ -64,6 +79,19 @@ void DeformableBody::refreshYieldForces() {
   for (std::size_t k = 0; k < s.bends.size(); ++k)
     bend_yield_N_[k] = yieldForce(s.bends[k].compliance_m_per_N, state_.bend_rest_m[k], s.bend_rest_m[k],
                                   s.bend_yield[k], laws[s.bends[k].material]);
+}
+
+void DeformableBody::refreshColumn(std::size_t k) {
+  const BodySettings& s = *settings_;
+  const SpokeConstraint& c = s.spokes[k];
+  const Eigen::Vector3d& rest = state_.column_rest_m[k];
+  const Eigen::Vector3d& original = s.rest_positions_m[c.point];
+  const PlasticLaw& law = s.plastic_laws[c.material];
+  column_taken_m_[k] = law.hardening * (rest - original).norm();
+  // Crushed to its clamp, a column can flow no further in: it bottoms out, rigidly elastic (as yieldForce
+  // for a spoke).
+  column_bottomed_[k] = s.spoke_normal[k].dot(original - rest) >=
+                        (1.0 - law.min_rest_fraction) * s.spoke_rest_m[k] * (1 - 1e-12);
 }
 
 void DeformableBody::setParams(const SolverParams& params) {

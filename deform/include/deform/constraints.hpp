@@ -246,6 +246,29 @@ inline double plasticRestLength(double length_m, double rest_m, double original_
   return std::clamp(moved, law.min_rest_fraction * original_rest_m, law.max_rest_fraction * original_rest_m);
 }
 
+/// The squared lengths [m^2] strictly between which plasticRestLength leaves a rest length alone, with a
+/// relative margin of 1e-9 inside the exact bounds (rest - shorten - taken, rest + stretch + taken) so that
+/// rounding can never make it skip a flow. Plasticity visits every constraint every substep and nearly all
+/// of them are elastic: with the band cached per constraint, those cost a squared length and two
+/// comparisons, not a square root and a return map. A constraint whose rest length flows gets a new band.
+struct ElasticBand {
+  double shortest_m2 = -1;       ///< below (or at) this squared length it may flow in compression
+  double longest_m2 = HUGE_VAL;  ///< above (or at) this squared length it may flow in tension
+  bool holds(double length_m2) const { return length_m2 > shortest_m2 && length_m2 < longest_m2; }
+};
+inline ElasticBand elasticBand(double rest_m, double original_rest_m, const YieldLimits& yield,
+                               const PlasticLaw& law) {
+  ElasticBand band;
+  if (!(rest_m > 0) || !(original_rest_m > 0)) return band;  // plasticRestLength never moves it
+  constexpr double kMargin = 1e-9;
+  const double taken = law.hardening * std::abs(rest_m - original_rest_m);
+  const double longest = rest_m + yield.stretch_m + taken;
+  const double shortest = rest_m - (yield.shorten_m + taken);
+  band.longest_m2 = longest * longest * (1 - kMargin);
+  band.shortest_m2 = shortest > 0 ? shortest * shortest * (1 + kMargin) : -1;
+  return band;
+}
+
 /// Elastic displacement [m] after which a crush column yields when its point is displaced along the unit
 /// `direction` from its rest place: the column resists a motion by the volume its patch of skin sweeps,
 /// |a . d| per metre of travel (a = |a| n its vector area, n outward), so pressed in (n . d < 0) it
@@ -256,6 +279,17 @@ inline double columnYield_m(const Eigen::Vector3d& normal, const Eigen::Vector3d
                             const YieldLimits& yield, double taken_m) {
   const double along = normal.dot(direction);
   return (along < 0 ? yield.shorten_m : yield.stretch_m) * std::abs(along) + taken_m;
+}
+
+/// True when a crush column displaced by `elastic` (x - rest) [m] is certainly within its yield, found
+/// without a square root: |e|^2 (1 + 1e-9) <= s |n . e|, with s its yield along the normal alone, which
+/// is at most what plasticColumnRest allows (|e| <= s |n . e| / |e| + taken, taken >= 0). False does not
+/// mean it flows: plasticColumnRest decides.
+inline bool columnSurelyElastic(const Eigen::Vector3d& normal, const Eigen::Vector3d& elastic,
+                                const YieldLimits& yield) {
+  const double along = normal.dot(elastic);
+  return elastic.squaredNorm() * (1 + 1e-9) <=
+         (along < 0 ? yield.shorten_m : yield.stretch_m) * std::abs(along);
 }
 
 /// Return map of a crush column's rest place (the 1D return map of plasticRestLength along the

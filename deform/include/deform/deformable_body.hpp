@@ -154,8 +154,11 @@ class DeformableBody {
   void placeObstacles(const StepInputs& inputs, double behind_s);
   void plasticity(StepReport& report, const Eigen::Vector3d& core_m, double h);
   bool loadChanged() const;
-  /// Every constraint's yield force from the state's rest lengths (after construction and setState).
+  /// Every constraint's yield force and elastic band from the state's rest lengths (after construction,
+  /// setState and setParams).
   void refreshYieldForces();
+  /// One crush column's cached yield growth and clamp (column_taken_m_, column_bottomed_).
+  void refreshColumn(std::size_t k);
   /// The visual constraint (the deviation cap) after the solve; a held point at its cap stops the core.
   void capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
                     const Eigen::Vector3d& core_start, Eigen::Vector3d& tie_push, StepReport& report);
@@ -232,6 +235,11 @@ class DeformableBody {
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<Eigen::Vector3d> column_lambda_;
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
+  std::vector<ElasticBand> edge_band_, spoke_band_, bend_band_;          ///< where each stays elastic (cache)
+  /// Per crush column, from its rest place (cache): the yield hardening has added [m], and whether it has
+  /// crushed to its clamp (bottomed out, rigid inward).
+  std::vector<double> column_taken_m_;
+  std::vector<uint8_t> column_bottomed_;
   std::vector<ContactPoint> contacts_;
   std::vector<FaceContact> face_contacts_;
   /// A point an obstacle's contact moved this substep (capDeviation): the obstacle and its normal.

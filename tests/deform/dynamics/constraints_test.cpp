@@ -2,6 +2,9 @@
 #include <catch2/catch.hpp>
 #include <deform/constraints.hpp>
 
+#include <algorithm>
+#include <random>
+
 using deform::PlasticLaw;
 
 TEST_CASE("a rigid distance constraint is met in one projection, moving by inverse mass", "[dynamics]") {
@@ -54,6 +57,61 @@ TEST_CASE("the plastic return map: elastic below yield, flows by the excess abov
   const deform::YieldLimits panel{0.05, 0.001};
   CHECK(deform::plasticRestLength(1.04, 1.0, 1.0, panel, law) == 1.0);
   CHECK(deform::plasticRestLength(0.99, 1.0, 1.0, panel, law) == Approx(0.991));
+}
+
+TEST_CASE("the cached elastic band never skips a flow, and is tight to 1e-8", "[dynamics]") {
+  // plasticity() skips a constraint whose squared length is inside its band: that must give exactly the
+  // return map's answer (no flow) for every length inside, and the band must reach the yield bounds.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int inside = 0, outside_flowed = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double original = 0.01 + unit(random);
+    const double rest = original * (0.5 + unit(random));
+    const deform::YieldLimits yield{original * 0.1 * unit(random), original * 0.1 * unit(random)};
+    const PlasticLaw law{trial % 3 == 0 ? 0.0 : unit(random), 0.4, 1.6};
+    const deform::ElasticBand band = deform::elasticBand(rest, original, yield, law);
+    const double taken = law.hardening * std::abs(rest - original);
+    const double longest = rest + yield.stretch_m + taken, shortest = rest - yield.shorten_m - taken;
+    for (int j = 0; j < 50; ++j) {
+      const double length =  // a length, never negative
+          std::max(0.0, (shortest - 0.1 * original) + unit(random) * (longest - shortest + 0.2 * original));
+      if (band.holds(length * length)) {
+        ++inside;
+        REQUIRE(deform::plasticRestLength(length, rest, original, yield, law) == rest);
+      }
+    }
+    // Just beyond either bound (by 1e-8 relative) the band no longer holds, and the rest length flows.
+    for (const double beyond : {longest * (1 + 1e-8), shortest * (1 - 1e-8)}) {
+      if (!(beyond > 0)) continue;
+      REQUIRE_FALSE(band.holds(beyond * beyond));
+      outside_flowed += deform::plasticRestLength(beyond, rest, original, yield, law) != rest;
+    }
+  }
+  CHECK(inside > 10000);
+  CHECK(outside_flowed > 3000);
+  // A rest length the return map never moves (zero or negative) has a band that always holds.
+  CHECK(deform::elasticBand(0.0, 1.0, {0.01, 0.01}, PlasticLaw{0, 0.5, 1.5}).holds(1e6));
+}
+
+TEST_CASE("a column called surely elastic never flows", "[dynamics]") {
+  std::mt19937 random(11);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int sure = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Vector3d normal = Eigen::Vector3d(gauss(random), gauss(random), gauss(random)).normalized();
+    const Eigen::Vector3d original(gauss(random), gauss(random), gauss(random));
+    const Eigen::Vector3d rest = original - 0.05 * unit(random) * normal;
+    const deform::YieldLimits yield{0.02 * unit(random), 0.02 * unit(random)};
+    const PlasticLaw law{trial % 2 == 0 ? 0.0 : unit(random), 0.2, 1.0};
+    const Eigen::Vector3d elastic =
+        0.03 * unit(random) * Eigen::Vector3d(gauss(random), gauss(random), gauss(random));
+    if (!deform::columnSurelyElastic(normal, elastic, yield)) continue;
+    ++sure;
+    REQUIRE(deform::plasticColumnRest(rest + elastic, rest, original, normal, 0.5, yield, law) == rest);
+  }
+  CHECK(sure > 1000);
 }
 
 TEST_CASE("the visual constraint projects onto the ball around the start", "[dynamics]") {
