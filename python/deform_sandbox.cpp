@@ -58,7 +58,7 @@ class Scene {
 
   /// The deformed render mesh of car `car` now (vehicle frame), as the renderer draws it: the skin of
   /// the control points, vertices inside an obstacle projected onto its surface (sandbox's deformedBody).
-  const deform::Mesh& mesh(std::size_t car) {
+  deform::Mesh mesh(std::size_t car) {
     const vehicle::Simulation& simulation = run_->simulation();
     const vehicle::CarId id = run_->carId(car);
     if (!skins_[car]) {
@@ -70,7 +70,7 @@ class Scene {
     obstacles.gather(simulation, id, skins_[car]->restBounds(),
                      skins_[car]->displacementBound_m(displacements));
     skins_[car]->update(displacements, obstacles.shapes());
-    return skins_[car]->mesh();
+    return skins_[car]->deformedMesh();
   }
 
  private:

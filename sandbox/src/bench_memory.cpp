@@ -62,14 +62,19 @@ void runBenchMemory(const BenchMemoryFlags& f) {
   }
   const double state_bytes = (heapBytes() - before) / static_cast<double>(f.cars);
 
-  // Each car's skin as the scenes hold it (scenes::CarSkin: weights, the deformed mesh and its normals,
-  // the rest positions, the vertex grid of the contact projection), updated once.
+  // The skin as the scenes hold it: one shared build for the model (scenes::CarSkin::Build: weights,
+  // rest copy, triangles, the triangles around each vertex, the vertex grid of the contact projection),
+  // then each car's own part (deformed positions and normals, flags), updated once.
+  before = heapBytes();
+  vehicle::DeformationSettings deformation;
+  const std::shared_ptr<const scenes::CarSkin::Build> build =
+      scenes::CarSkin::share(car.body, scenes::CarSkin::buildSkin(car.body, mesh.points_m, deformation));
+  const double shared_skin_bytes = heapBytes() - before;
   before = heapBytes();
   std::vector<std::unique_ptr<scenes::CarSkin>> skins;
   std::vector<Eigen::Vector3d> displacement(n, Eigen::Vector3d(0.01, 0, 0));
-  vehicle::DeformationSettings deformation;
   for (std::size_t c = 0; c < f.cars; ++c) {
-    skins.push_back(std::make_unique<scenes::CarSkin>(car.body, mesh.points_m, deformation));
+    skins.push_back(std::make_unique<scenes::CarSkin>(build));
     skins.back()->update(displacement);
   }
   const double skin_bytes = (heapBytes() - before) / static_cast<double>(f.cars);
@@ -84,6 +89,8 @@ void runBenchMemory(const BenchMemoryFlags& f) {
   r["settings_bytes_per_control_point"] = settings_bytes / static_cast<double>(n);
   r["state_bytes_per_car"] = state_bytes;
   r["state_bytes_per_control_point"] = state_bytes / static_cast<double>(n);
+  r["skin_shared_bytes"] = shared_skin_bytes;
+  r["skin_shared_bytes_per_vertex"] = shared_skin_bytes / static_cast<double>(v);
   r["skin_bytes_per_car"] = skin_bytes;
   r["skin_bytes_per_vertex"] = skin_bytes / static_cast<double>(v);
   r["skin_weights_bytes_per_vertex"] = static_cast<double>(weights.memoryBytes()) / static_cast<double>(v);
@@ -103,10 +110,12 @@ void runBenchMemory(const BenchMemoryFlags& f) {
   std::printf("  state, per car          %9.0f B  = %6.0f B per control point\n", state_bytes,
               state_bytes / static_cast<double>(n));
   std::printf(
-      "  skin, per car           %9.0f B  = %6.1f B per render vertex (weights %.1f, reverse index %.1f)\n",
-      skin_bytes, skin_bytes / static_cast<double>(v),
+      "  skin build (shared)     %9.0f B  = %6.1f B per render vertex (weights %.1f, reverse index %.1f)\n",
+      shared_skin_bytes, shared_skin_bytes / static_cast<double>(v),
       static_cast<double>(weights.memoryBytes()) / static_cast<double>(v),
       static_cast<double>(weights.reverseIndexBytes()) / static_cast<double>(v));
+  std::printf("  skin, per car           %9.0f B  = %6.1f B per render vertex\n", skin_bytes,
+              skin_bytes / static_cast<double>(v));
   std::printf("  resident set            %.1f MB at the start, %.1f MB with every car (%s 200 MB)\n",
               rss_start / 1e6, rss_end / 1e6, rss_end < 200e6 ? "under" : "OVER");
 }

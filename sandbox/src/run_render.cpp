@@ -119,19 +119,23 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
   auto start = Clock::now();
   const vehicle::Simulation& simulation = run.simulation();
   // Cars of one build (the same loaded model and shared control mesh) with the same skin settings share
-  // one set of weights (DESIGN.md section 8); the addresses stay put for the run.
+  // one set of weights, rest copy, triangles and grid (DESIGN.md section 8); the addresses stay put for
+  // the run.
   using SkinKey = std::tuple<const void*, const void*, double, std::size_t, int>;
-  std::map<SkinKey, std::shared_ptr<const deform::Skin>> skins;
+  std::map<SkinKey, std::shared_ptr<const scenes::CarSkin::Build>> builds;
   for (std::size_t i = 0; i < run.carCount(); ++i) {
     CarMeshes car;
     const vehicle::CarId id = run.carId(i);
     const vehicle::DeformationSettings& settings = simulation.deformationSettings(id);
     const SkinKey key{&run.model(i).body, &simulation.controlRestPoints(id), settings.alpha,
                       settings.k_nearest, static_cast<int>(settings.skin_method)};
-    std::shared_ptr<const deform::Skin>& skin = skins[key];
-    if (!skin)
-      skin = scenes::CarSkin::buildSkin(run.model(i).body, simulation.controlRestPoints(id), settings);
-    car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, skin);
+    std::shared_ptr<const scenes::CarSkin::Build>& build = builds[key];
+    if (!build) {
+      build = scenes::CarSkin::share(
+          run.model(i).body,
+          scenes::CarSkin::buildSkin(run.model(i).body, simulation.controlRestPoints(id), settings));
+    }
+    car.skin = std::make_unique<scenes::CarSkin>(build);
     for (const vehicle::WheelSettings& w : simulation.world().car(id).wheelSettings())
       car.hub_rest_m.push_back(w.centre_m.cast<float>());
     if (!car.hub_rest_m.empty()) {
@@ -226,11 +230,10 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
     CarMeshes& car = cars_[i];
     const vehicle::Car& chassis = world.car(run.carId(i));
     if (changed[i]) {
-      const deform::Mesh& mesh = car.skin->mesh();
-      renderer_->updatePositions(car.body, mesh.positions_m, mesh.normals);
+      renderer_->updatePositions(car.body, car.skin->positions(), car.skin->normals());
       if (heatmap_) {
         renderer_->setColours(car.body, deform::displacementColours(car.skin->restPositions(),
-                                                                    mesh.positions_m, car.full_scale_m));
+                                                                    car.skin->positions(), car.full_scale_m));
       }
     }
     const vehicle::Pose vehicle_pose = chassis.vehiclePose();
@@ -276,7 +279,7 @@ deform::Mesh deformedBody(const scenes::SceneRun& run, std::size_t car) {
   scenes::SkinObstacles obstacles;
   obstacles.gather(simulation, id, skin.restBounds(), skin.displacementBound_m(displacements));
   skin.update(displacements, obstacles.shapes());
-  return skin.mesh();
+  return skin.deformedMesh();
 }
 
 }  // namespace sandbox

@@ -17,34 +17,71 @@ std::shared_ptr<const deform::Skin> CarSkin::buildSkin(const deform::Mesh& body,
       body.positions_m, control_rest_m, {settings.alpha, settings.k_nearest, 0, settings.skin_method}));
 }
 
-CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
-                 const vehicle::DeformationSettings& settings)
-    : CarSkin(body, buildSkin(body, control_rest_m, settings)) {}
-
-CarSkin::CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin)
-    : skin_(std::move(skin)),
-      rest_m_(body.positions_m),
-      mesh_(body),
-      last_displacements_m_(skin_->controlPointCount(), Eigen::Vector3d::Zero()),
-      moved_(skin_->controlPointCount(), 0),
-      normals_(body),
-      grid_(body.positions_m),
-      is_projected_(body.positions_m.size(), 0) {
-  if (mesh_.normals.size() != mesh_.positions_m.size()) {
-    normals_.computeAll(mesh_);
-    normals_computed_ = true;
-  }
-  interior_m_ = 0.5 * (grid_.bounds().min_m + grid_.bounds().max_m);
+std::shared_ptr<const CarSkin::Build> CarSkin::share(const deform::Mesh& body,
+                                                     std::shared_ptr<const deform::Skin> skin) {
+  auto build = std::make_shared<Build>();
+  build->skin = std::move(skin);
+  build->rest_m = body.positions_m;
+  if (body.normals.size() == body.positions_m.size()) build->rest_normals = body.normals;
+  build->triangles = body.triangles;
+  build->around = std::make_shared<const deform::VertexTriangles>(body.triangles, body.positions_m.size());
+  build->grid = deform::VertexGrid(body.positions_m);
+  build->interior_m = 0.5 * (build->grid.bounds().min_m + build->grid.bounds().max_m);
   // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
   // negative weights.
-  for (std::size_t j = 0; j < skin_->vertexCount(); ++j) {
+  const deform::Skin& weights = *build->skin;
+  for (std::size_t j = 0; j < weights.vertexCount(); ++j) {
     double gain = 0;
-    for (std::size_t k = 0; k < skin_->influences(); ++k) {
-      gain += std::abs(skin_->slotWeight(j, k));
-      nonnegative_weights_ = nonnegative_weights_ && skin_->slotWeight(j, k) >= 0;
+    for (std::size_t k = 0; k < weights.influences(); ++k) {
+      gain += std::abs(weights.slotWeight(j, k));
+      build->nonnegative_weights = build->nonnegative_weights && weights.slotWeight(j, k) >= 0;
     }
-    displacement_gain_ = std::max(displacement_gain_, gain);
+    build->displacement_gain = std::max(build->displacement_gain, gain);
   }
+  return build;
+}
+
+std::size_t CarSkin::Build::bytes() const {
+  return skin->memoryBytes() + (rest_m.capacity() + rest_normals.capacity()) * sizeof(Eigen::Vector3f) +
+         triangles.capacity() * sizeof(deform::Triangle) + around->bytes() + grid.bytes();
+}
+
+CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
+                 const vehicle::DeformationSettings& settings)
+    : CarSkin(share(body, buildSkin(body, control_rest_m, settings))) {}
+
+CarSkin::CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin)
+    : CarSkin(share(body, std::move(skin))) {}
+
+CarSkin::CarSkin(std::shared_ptr<const Build> build)
+    : build_(std::move(build)),
+      positions_m_(build_->rest_m),
+      normals_(build_->rest_normals),
+      last_displacements_m_(build_->skin->controlPointCount(), Eigen::Vector3d::Zero()),
+      moved_(build_->skin->controlPointCount(), 0),
+      normal_updates_(build_->around),
+      is_projected_(build_->rest_m.size(), 0) {
+  if (normals_.size() != positions_m_.size()) {
+    normal_updates_.computeAll(positions_m_, build_->triangles, normals_);
+    normals_computed_ = true;
+  }
+}
+
+deform::Mesh CarSkin::deformedMesh() const {
+  deform::Mesh mesh;
+  mesh.positions_m = positions_m_;
+  mesh.triangles = build_->triangles;
+  mesh.normals = normals_;
+  return mesh;
+}
+
+std::size_t CarSkin::ownBytes() const {
+  return (positions_m_.capacity() + normals_.capacity() + projected_from_m_.capacity()) *
+             sizeof(Eigen::Vector3f) +
+         last_displacements_m_.capacity() * sizeof(Eigen::Vector3d) + moved_.capacity() +
+         vertex_recomputed_.capacity() + is_projected_.capacity() +
+         (projected_.capacity() + candidates_.capacity()) * sizeof(uint32_t) + normal_updates_.bytes() +
+         restored_.capacity() * sizeof(restored_[0]);
 }
 
 double CarSkin::reachAlong_m(const std::vector<Eigen::Vector3d>& displacements_m,
@@ -53,12 +90,13 @@ double CarSkin::reachAlong_m(const std::vector<Eigen::Vector3d>& displacements_m
   // largest n . d_i, else at most gain x the largest |n . d_i|.
   double largest_m = 0;
   for (const Eigen::Vector3d& d : displacements_m)
-    largest_m = std::max(largest_m, nonnegative_weights_ ? into.dot(d) : std::abs(into.dot(d)));
-  return (nonnegative_weights_ ? 1.0 : displacement_gain_) * largest_m + deform::kProjectionClearance_m;
+    largest_m = std::max(largest_m, build_->nonnegative_weights ? into.dot(d) : std::abs(into.dot(d)));
+  return (build_->nonnegative_weights ? 1.0 : build_->displacement_gain) * largest_m +
+         deform::kProjectionClearance_m;
 }
 
 Eigen::Vector3f CarSkin::skinPosition(std::size_t vertex) const {
-  if (!is_projected_[vertex]) return mesh_.positions_m[vertex];
+  if (!is_projected_[vertex]) return positions_m_[vertex];
   const auto at = std::find(projected_.begin(), projected_.end(), static_cast<uint32_t>(vertex));
   return projected_from_m_[static_cast<std::size_t>(at - projected_.begin())];
 }
@@ -66,7 +104,7 @@ Eigen::Vector3f CarSkin::skinPosition(std::size_t vertex) const {
 double CarSkin::displacementBound_m(const std::vector<Eigen::Vector3d>& displacements_m) const {
   double largest_m = 0;
   for (const Eigen::Vector3d& d : displacements_m) largest_m = std::max(largest_m, d.norm());
-  return displacement_gain_ * largest_m + deform::kProjectionClearance_m;
+  return build_->displacement_gain * largest_m + deform::kProjectionClearance_m;
 }
 
 std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m) {
@@ -85,11 +123,11 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   if (!any && obstacles.empty() && projected_.empty()) return 0;
   std::size_t changed = 0;
   if (any) {
-    changed = skin_->deformMoved(rest_m_.data(), displacements_m.data(), moved_, mesh_.positions_m.data(), 0,
-                                 &vertex_recomputed_);
+    changed = build_->skin->deformMoved(build_->rest_m.data(), displacements_m.data(), moved_,
+                                        positions_m_.data(), 0, &vertex_recomputed_);
     last_displacements_m_ = displacements_m;
   } else {
-    vertex_recomputed_.assign(mesh_.positions_m.size(), 0);
+    vertex_recomputed_.assign(positions_m_.size(), 0);
   }
   const auto projection_start = std::chrono::steady_clock::now();
   // Back to the skin's position before the test (the skin did not recompute a vertex whose control
@@ -99,8 +137,8 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
     const uint32_t v = projected_[k];
     is_projected_[v] = 0;
     if (vertex_recomputed_[v]) continue;
-    restored_.emplace_back(v, mesh_.positions_m[v]);
-    mesh_.positions_m[v] = projected_from_m_[k];
+    restored_.emplace_back(v, positions_m_[v]);
+    positions_m_[v] = projected_from_m_[k];
     vertex_recomputed_[v] = 1;
     ++changed;
   }
@@ -116,28 +154,28 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
     const auto* ground = std::get_if<deform::HalfSpaceShape>(&shape);
     const double shape_reach_m =
         ground ? std::min(reach_m, reachAlong_m(displacements_m, -ground->normal.normalized())) : reach_m;
-    deform::verticesNear(shape, grid_, shape_reach_m, candidates_);
+    deform::verticesNear(shape, build_->grid, shape_reach_m, candidates_);
     last_projection_.tested += candidates_.size();
     if (std::holds_alternative<deform::HalfSpaceShape>(shape))
       last_projection_.tested_ground += candidates_.size();
     for (const uint32_t v : candidates_) {
-      Eigen::Vector3d x = mesh_.positions_m[v].cast<double>();
-      if (!deform::projectOutOf(shape, interior_m_, x)) continue;
+      Eigen::Vector3d x = positions_m_[v].cast<double>();
+      if (!deform::projectOutOf(shape, build_->interior_m, x)) continue;
       if (!is_projected_[v]) {
         is_projected_[v] = 1;
         projected_.push_back(v);
-        projected_from_m_.push_back(mesh_.positions_m[v]);
+        projected_from_m_.push_back(positions_m_[v]);
         ++last_projection_.projected;
         if (!vertex_recomputed_[v]) ++changed;
         vertex_recomputed_[v] = 1;
       }
-      mesh_.positions_m[v] = x.cast<float>();
+      positions_m_[v] = x.cast<float>();
     }
   }
   // A vertex put back and projected again to the very same place did not change (a car resting against a
   // wall re-uploads nothing).
   for (const auto& [v, before] : restored_)
-    if (mesh_.positions_m[v] == before) {
+    if (positions_m_[v] == before) {
       vertex_recomputed_[v] = 0;
       --changed;
     }
@@ -145,10 +183,10 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - projection_start).count();
   if (changed == 0 && !any) return 0;
   if (!normals_computed_) {
-    normals_.computeAll(mesh_);
+    normal_updates_.computeAll(positions_m_, build_->triangles, normals_);
     normals_computed_ = true;
   } else {
-    normals_.update(mesh_, vertex_recomputed_);
+    normal_updates_.update(positions_m_, build_->triangles, vertex_recomputed_, normals_);
   }
   return changed;
 }

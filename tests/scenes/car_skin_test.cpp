@@ -42,8 +42,8 @@ TEST_CASE("partial skin and normal updates equal a full recompute bit for bit", 
       deform::Mesh full = body;
       skin.skin().deform(body.positions_m.data(), displacement.data(), full.positions_m.data());
       deform::computeVertexNormals(full);
-      REQUIRE(skin.mesh().positions_m == full.positions_m);
-      REQUIRE(skin.mesh().normals == full.normals);
+      REQUIRE(skin.positions() == full.positions_m);
+      REQUIRE(skin.normals() == full.normals);
     }
     CHECK(partial_updates > 4);  // the partial path was exercised, not only full recomputes
   }
@@ -57,14 +57,14 @@ TEST_CASE("normals the body came with are kept until something moves, then all r
   deform::Mesh body = car.body;
   body.normals.assign(body.positions_m.size(), Eigen::Vector3f(1, 0, 0));  // the file's own normals
   scenes::CarSkin skin(body, control, vehicle::DeformationSettings{});
-  CHECK(skin.mesh().normals == body.normals);
+  CHECK(skin.normals() == body.normals);
   std::vector<Eigen::Vector3d> displacement(control.size(), Eigen::Vector3d::Zero());
   displacement[3] = {0.02, 0, 0};
   skin.update(displacement);
   deform::Mesh full = body;
   skin.skin().deform(body.positions_m.data(), displacement.data(), full.positions_m.data());
   deform::computeVertexNormals(full);
-  CHECK(skin.mesh().normals == full.normals);
+  CHECK(skin.normals() == full.normals);
 }
 
 TEST_CASE("cars of one build share one skin and deform as with their own", "[car_skin]") {
@@ -74,17 +74,25 @@ TEST_CASE("cars of one build share one skin and deform as with their own", "[car
   const std::vector<Eigen::Vector3d> control = deform::buildControlMesh(points, 60).points_m;
   const vehicle::DeformationSettings settings;
   const std::shared_ptr<const deform::Skin> shared = scenes::CarSkin::buildSkin(car.body, control, settings);
-  scenes::CarSkin a(car.body, shared), b(car.body, shared);
+  const std::shared_ptr<const scenes::CarSkin::Build> build = scenes::CarSkin::share(car.body, shared);
+  scenes::CarSkin a(build), b(build);
   scenes::CarSkin own(car.body, control, settings);
   CHECK(&a.skin() == &b.skin());
   CHECK(&a.skin() != &own.skin());
+  // The rest copy, triangles, adjacency and grid are the build's, held once: a car's own part is its
+  // positions and normals (24 bytes per vertex) and its flags, under half of what it shares.
+  CHECK(&a.triangles() == &b.triangles());
+  CHECK(&a.restPositions() == &b.restPositions());
+  const std::size_t vertices = car.body.positions_m.size();
+  CHECK(a.ownBytes() < 32 * vertices);
+  CHECK(a.ownBytes() < build->bytes() / 2);
   // Each car's mesh is its own: a dent in one leaves the other at rest.
   std::vector<Eigen::Vector3d> dent(control.size(), Eigen::Vector3d::Zero());
   dent[0] = {-0.1, 0.02, 0.0};
   dent[7] = {0.0, -0.05, 0.01};
   a.update(dent);
   own.update(dent);
-  CHECK(a.mesh().positions_m == own.mesh().positions_m);
-  CHECK(a.mesh().normals == own.mesh().normals);
-  CHECK(b.mesh().positions_m == car.body.positions_m);
+  CHECK(a.positions() == own.positions());
+  CHECK(a.normals() == own.normals());
+  CHECK(b.positions() == car.body.positions_m);
 }

@@ -66,7 +66,7 @@ TEST_CASE("no render vertex is more than 1 cm inside an obstacle in any filmed f
           busiest_ms = skin.lastProjection().ms;
         }
         most_projected = std::max(most_projected, skin.lastProjection().projected);
-        const auto& positions = skin.mesh().positions_m;
+        const auto& positions = skin.positions();
         for (std::size_t v = 0; v < positions.size(); ++v) {
           before_m = std::max(before_m, deepestInside_m(obstacles.shapes(), skin.skinPosition(v)));
           after_m = std::max(after_m, deepestInside_m(obstacles.shapes(), positions[v]));
@@ -118,9 +118,9 @@ TEST_CASE("the projection moves only the vertices inside; out of contact they re
     deform::Penetration p;
     if (deform::penetration(wall, skinned.positions_m[v].cast<double>(), p) && p.depth_m > 0) {
       ++inside;
-      CHECK(std::abs(skin.mesh().positions_m[v].x() - (wall.centre_m.x() - 0.5)) < 1e-6);  // on the wall
+      CHECK(std::abs(skin.positions()[v].x() - (wall.centre_m.x() - 0.5)) < 1e-6);  // on the wall
     } else {
-      REQUIRE(skin.mesh().positions_m[v] == skinned.positions_m[v]);  // untouched, bit for bit
+      REQUIRE(skin.positions()[v] == skinned.positions_m[v]);  // untouched, bit for bit
     }
   }
   CHECK(inside > 0);
@@ -128,14 +128,14 @@ TEST_CASE("the projection moves only the vertices inside; out of contact they re
   CHECK(skin.lastProjection().tested < body.positions_m.size() / 2);
 
   // Resting against the wall, nothing moving: put back and projected again to the same place, no change.
-  const std::vector<Eigen::Vector3f> resting = skin.mesh().positions_m;
+  const std::vector<Eigen::Vector3f> resting = skin.positions();
   CHECK(skin.update(displacement, {wall}) == 0);
-  REQUIRE(skin.mesh().positions_m == resting);
+  REQUIRE(skin.positions() == resting);
 
   // The wall gone, the dent unchanged: every vertex back where the skin puts it, normals as computed
   // from scratch.
   skin.update(displacement, {});
   deform::computeVertexNormals(skinned);
-  REQUIRE(skin.mesh().positions_m == skinned.positions_m);
-  REQUIRE(skin.mesh().normals == skinned.normals);
+  REQUIRE(skin.positions() == skinned.positions_m);
+  REQUIRE(skin.normals() == skinned.normals);
 }

@@ -22,6 +22,8 @@ class VertexGrid {
   /// The rest positions' bounding box [m].
   const Aabb& bounds() const { return bounds_; }
   std::size_t vertexCount() const { return vertices_.size(); }
+  /// Heap bytes held.
+  std::size_t bytes() const { return (cell_begin_.capacity() + vertices_.capacity()) * sizeof(uint32_t); }
 
  private:
   Aabb bounds_;

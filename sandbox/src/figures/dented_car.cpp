@@ -22,7 +22,7 @@ DentedCar dentCar(scenes::SceneRun& run, std::optional<deform::SkinMethod> metho
   skin.update(displacements);
   DentedCar car;
   car.model = run.model(0);
-  car.dented = skin.mesh();
+  car.dented = skin.deformedMesh();
   // The wheels carried with the bodywork around them (as in the crash videos).
   std::vector<Eigen::Vector3f> hubs;
   for (const auto& w : car.model.wheels) hubs.push_back(w.centre_m.cast<float>());

@@ -156,8 +156,8 @@ std::vector<StressCase> skinAlpha(bool quick) {
     skin.update(displacements);
     RunVerdict verdict;
     double moved_max_m = 0, moved_sum_m = 0;
-    for (std::size_t j = 0; j < skin.mesh().positions_m.size(); ++j) {
-      const Eigen::Vector3f v = skin.mesh().positions_m[j];
+    for (std::size_t j = 0; j < skin.positions().size(); ++j) {
+      const Eigen::Vector3f v = skin.positions()[j];
       if (!v.allFinite()) {
         verdict.fail("vertex " + std::to_string(j) + " not finite");
         break;
@@ -171,7 +171,7 @@ std::vector<StressCase> skinAlpha(bool quick) {
     c.passed = verdict.ok;
     c.detail = verdict.text() +
                format("largest vertex move %.3f m (control %.3f m), mean %.1f mm", moved_max_m, largest_m,
-                      1e3 * moved_sum_m / static_cast<double>(skin.mesh().positions_m.size()));
+                      1e3 * moved_sum_m / static_cast<double>(skin.positions().size()));
     c.seconds = secondsSince(start);
     cases.push_back(c);
   }

@@ -190,7 +190,7 @@ nlohmann::json measureTradeoffCase(const std::string& scene_name, const std::vec
           {"strain_residual",
            deform::constraintStrainRms(simulation.body(car).settings(), simulation.body(car).state())},
           {"diagonal_m", deform::boundingBox(run.model(0).body).diagonal_m()},
-          {"render_mesh_m", encodePoints(skin.mesh().positions_m)}};
+          {"render_mesh_m", encodePoints(skin.positions())}};
 }
 
 std::vector<TradeoffRow> assembleTradeoff(const SweepPlan& plan,

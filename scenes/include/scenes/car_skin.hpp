@@ -23,17 +23,38 @@ namespace scenes {
 
 class CarSkin {
  public:
-  /// Skin of `body` (vehicle frame) in `control_rest_m` with the car's alpha, k_nearest and skin_method.
-  CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
-          const vehicle::DeformationSettings& settings);
-  /// The same with weights built beforehand by buildSkin for this body (shared by the cars of one
-  /// build: same body mesh, control mesh and skin settings; DESIGN.md section 8).
-  CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin);
-  /// The weights the first constructor builds: `body`'s vertices in `control_rest_m` with the car's
-  /// alpha, k_nearest and skin_method.
+  /// What every car of one build shares (the same body mesh, control mesh and skin settings; DESIGN.md
+  /// section 8): immutable once made. A car keeps only its deformed positions and normals and a few
+  /// flags per vertex (`sandbox bench memory`).
+  struct Build {
+    std::shared_ptr<const deform::Skin> skin;
+    std::vector<Eigen::Vector3f> rest_m;        ///< the body's vertices [m]
+    std::vector<Eigen::Vector3f> rest_normals;  ///< the body's own normals (empty: computed)
+    std::vector<deform::Triangle> triangles;
+    std::shared_ptr<const deform::VertexTriangles> around;  ///< triangles around each vertex
+    deform::VertexGrid grid;              ///< rest positions, for the vertices near an obstacle
+    Eigen::Vector3d interior_m{0, 0, 0};  ///< middle of the rest bounding box [m]
+    double displacement_gain = 1;     ///< largest sum of |weights| of a vertex: |v - v0| <= gain max |d_i|
+    bool nonnegative_weights = true;  ///< every weight >= 0 (idw): a vertex moves within its points' hull
+    std::size_t bytes() const;        ///< heap bytes held, the weights included
+  };
+  /// The shared part for `body` with weights built beforehand by buildSkin for it.
+  static std::shared_ptr<const Build> share(const deform::Mesh& body,
+                                            std::shared_ptr<const deform::Skin> skin);
+  /// The weights of `body`'s vertices in `control_rest_m` with the car's alpha, k_nearest and
+  /// skin_method.
   static std::shared_ptr<const deform::Skin> buildSkin(const deform::Mesh& body,
                                                        const std::vector<Eigen::Vector3d>& control_rest_m,
                                                        const vehicle::DeformationSettings& settings);
+
+  /// One car of a shared build.
+  explicit CarSkin(std::shared_ptr<const Build> build);
+  /// A car with a build of its own: `body` (vehicle frame) in `control_rest_m` with the car's alpha,
+  /// k_nearest and skin_method.
+  CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
+          const vehicle::DeformationSettings& settings);
+  /// A car with a build of its own around weights built beforehand by buildSkin for `body`.
+  CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin);
 
   /// Moves the vertices for control-point displacements c_i - c_i0 [m]; recomputes only the vertices of
   /// points whose displacement changed since the last update, and the normals of the vertices sharing a
@@ -61,29 +82,32 @@ class CarSkin {
   /// The most any vertex can be from its rest position for these control-point displacements [m].
   double displacementBound_m(const std::vector<Eigen::Vector3d>& displacements_m) const;
   /// The rest mesh's bounding box (vehicle frame) [m].
-  const deform::Aabb& restBounds() const { return grid_.bounds(); }
+  const deform::Aabb& restBounds() const { return build_->grid.bounds(); }
   /// Where the skin puts every vertex now, before the projection (vehicle frame) [m].
   Eigen::Vector3f skinPosition(std::size_t vertex) const;
 
-  /// The deformed mesh now (vehicle frame), normals up to date.
-  const deform::Mesh& mesh() const { return mesh_; }
-  const std::vector<Eigen::Vector3f>& restPositions() const { return rest_m_; }
-  const deform::Skin& skin() const { return *skin_; }
+  /// The deformed vertices now (vehicle frame) [m], their normals (up to date), and the triangles.
+  const std::vector<Eigen::Vector3f>& positions() const { return positions_m_; }
+  const std::vector<Eigen::Vector3f>& normals() const { return normals_; }
+  const std::vector<deform::Triangle>& triangles() const { return build_->triangles; }
+  /// The deformed mesh now as a mesh of its own (a copy).
+  deform::Mesh deformedMesh() const;
+  const std::vector<Eigen::Vector3f>& restPositions() const { return build_->rest_m; }
+  const deform::Skin& skin() const { return *build_->skin; }
+  const Build& build() const { return *build_; }
+  /// Heap bytes this car holds of its own (not the shared build).
+  std::size_t ownBytes() const;
 
  private:
-  std::shared_ptr<const deform::Skin> skin_;  ///< immutable, may be shared with other cars
-  std::vector<Eigen::Vector3f> rest_m_;
-  deform::Mesh mesh_;
+  std::shared_ptr<const Build> build_;
+  std::vector<Eigen::Vector3f> positions_m_;
+  std::vector<Eigen::Vector3f> normals_;
   std::vector<Eigen::Vector3d> last_displacements_m_;
   std::vector<uint8_t> moved_;
-  deform::VertexNormals normals_;           ///< cached triangle normals, for partial normal updates
+  deform::VertexNormals normal_updates_;    ///< partial normal updates
   bool normals_computed_ = false;           ///< every normal computed from the triangles at least once
   std::vector<uint8_t> vertex_recomputed_;  ///< scratch: vertices the last update moved
 
-  deform::VertexGrid grid_;          ///< rest positions, for the vertices near an obstacle
-  Eigen::Vector3d interior_m_;       ///< middle of the rest bounding box [m]
-  double displacement_gain_ = 1;     ///< largest sum of |weights| of a vertex: |v - v0| <= gain max |d_i|
-  bool nonnegative_weights_ = true;  ///< every weight >= 0 (idw): a vertex moves within its points' hull
   /// How far along the unit `into` any vertex can have moved: the reach of a half-space's test [m].
   double reachAlong_m(const std::vector<Eigen::Vector3d>& displacements_m, const Eigen::Vector3d& into) const;
   std::vector<uint32_t> projected_;  ///< vertices off the skin's position (on an obstacle's surface)
