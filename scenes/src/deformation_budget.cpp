@@ -128,8 +128,8 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // (docs/CRASH_CALIBRATION.md, "Two cars, one solve"). From 250 points a step in contact now takes substeps
   // of at most 0.5 ms (vehicle's contactSubstep_s), which closes that pile within 5.1 % at 120 Hz but costs
   // up to 4x the group solve's 4 x 2 below 500 Hz; the higher figures still bound that. A budget that
-  // over-estimates chooses coarser levels, never a broken one. The obstacle column does not yet follow
-  // that cap: at 120 Hz a 250-point car or finer against an obstacle takes 17 substeps, not 4 (open).
+  // over-estimates chooses coarser levels, never a broken one. The obstacle column was measured at 500 Hz,
+  // where the cap adds no substep; below, contactCostScale charges a level the substeps the cap adds.
   static const std::vector<DeformationLevel> levels = {
       {"fast", 60, 4, 2, 1, 0.013, 0.021, 0.34},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.69},
       {"accurate", 250, 8, 4, 2, 0.166, 0.18, 3.5}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 8.4},
@@ -149,6 +149,16 @@ void applyLevel(const DeformationLevel& level, vehicle::DeformationSettings& set
   settings.k_nearest = level.k_nearest;
   settings.substeps = level.substeps;
   settings.iterations = level.iterations;
+}
+
+double contactCostScale(const DeformationLevel& level, const vehicle::DeformationSettings& car,
+                        double step_s) {
+  vehicle::DeformationSettings settings = car;
+  applyLevel(level, settings);
+  const double longest_s = vehicle::contactSubstep_s(settings);
+  if (!(step_s > 0) || !std::isfinite(longest_s)) return 1.0;
+  const int substeps = std::max(level.substeps, static_cast<int>(std::ceil(step_s / longest_s - 1e-9)));
+  return static_cast<double>(substeps) / static_cast<double>(std::max(level.substeps, 1));
 }
 
 BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps) {
@@ -178,10 +188,13 @@ BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int
   std::vector<std::size_t> chosen(n, 0);  // index into levels
   for (std::size_t i = 0; i < n; ++i)
     if (plan.cars[i].meets == Meets::Car) chosen[i] = std::min<std::size_t>(1, levels.size() - 1);
+  const double step_s = 1.0 / (scene.physics_hz * steps);  // one world step
   auto cost = [&](std::size_t car, std::size_t level) {
     const DeformationLevel& l = levels[level];
     const Meets meets = plan.cars[car].meets;
-    return (meets == Meets::Car ? l.car_ms : meets == Meets::Obstacle ? l.obstacle_ms : l.driving_ms) * steps;
+    if (meets == Meets::Obstacle)
+      return l.obstacle_ms * contactCostScale(l, scene.vehicles[car].deformation.settings, step_s) * steps;
+    return (meets == Meets::Car ? l.car_ms : l.driving_ms) * steps;
   };
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) total += cost(i, chosen[i]);

@@ -158,3 +158,34 @@ TEST_CASE("Budget: the scene key is applied to every car, and a negative budget 
   CHECK(config.vehicles[0].deformation.settings.control_points == level->control_points);
   CHECK(config.vehicles[0].deformation.preset == level->name);
 }
+
+TEST_CASE("Budget: a fine car against an obstacle is charged the substeps the contact cap adds",
+          "[scenes][budget]") {
+  // The obstacle costs were measured at 500 Hz (2 ms steps: 4 substeps of 0.5 ms, the cap's own length).
+  // At 120 Hz a level of 250 points or more takes ceil(8.33 / 0.5) = 17 substeps in contact, not 4.
+  const vehicle::DeformationSettings car;
+  const scenes::DeformationLevel& fast = *scenes::deformationLevel("fast");
+  const scenes::DeformationLevel& accurate = *scenes::deformationLevel("accurate");
+  CHECK(scenes::contactCostScale(accurate, car, 1.0 / 500) == 1.0);
+  CHECK(scenes::contactCostScale(accurate, car, 1.0 / 120) == Approx(17.0 / 4.0));
+  CHECK(scenes::contactCostScale(fast, car, 1.0 / 120) == 1.0);  // below 250 points: no cap
+  vehicle::DeformationSettings own = car;
+  own.longest_contact_substep_s = 1e-3;  // a scene's own cap applies to every level
+  CHECK(scenes::contactCostScale(fast, own, 1.0 / 120) == Approx(9.0 / 2.0));
+  // The plan charges it: one car driving into a wall at 120 Hz against the same car at 500 Hz.
+  json scene = {{"duration_s", 1.0},
+                {"physics_hz", 500},
+                {"vehicles",
+                 {{{"mesh", "builtin:sedan?vertices=2000"},
+                   {"mass_kg", 1500},
+                   {"coupling", "crush"},
+                   {"start", {{"position_m", {0.0, 0.0}}, {"speed_kmh", 30}}}}}},
+                {"obstacles", {{{"type", "wall"}, {"position_m", {8, 0}}, {"size_m", {0.5, 4, 1.5}}}}}};
+  const scenes::BudgetPlan at500 = scenes::planDeformationBudget(scenes::parseScene(scene, "w.json"), 100);
+  scene["physics_hz"] = 120;
+  const scenes::BudgetPlan at120 = scenes::planDeformationBudget(scenes::parseScene(scene, "w.json"), 100);
+  REQUIRE(at500.cars[0].meets == scenes::Meets::Obstacle);
+  REQUIRE(at500.cars[0].level == "finest");
+  REQUIRE(at120.cars[0].level == "finest");
+  CHECK(at120.cars[0].estimated_ms == Approx(at500.cars[0].estimated_ms * std::ceil(500.0 / 120.0 * 4) / 4));
+}

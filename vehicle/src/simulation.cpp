@@ -22,21 +22,20 @@ void require(bool ok, const char* member, const std::string& rule, double value)
   if (!ok) throw deform::InputError(field(member) + ": " + rule + " (got " + std::to_string(value) + ")");
 }
 
-/// The longest substep of a step with something in contact (deform::SolverParams::
-/// longest_contact_substep_s) [s]. Unset (0): 0.5 ms from 250 control points up, none below. Measured at
-/// 120 Hz (4 substeps of 2.1 ms), unexplained energy against the car's initial kinetic energy: traffic's
-/// pile of four cars, the runner at 1,000 points -2150 % -> -8 %, at 250 points -488 % -> -5 %; east4
-/// against its tree at 250 points -17 % -> +0.8 %. At 60 points the shorter substeps made the pile worse
-/// (-11 % -> -46 %), so the coarse levels keep their own (docs/CRASH_CALIBRATION.md, "Two cars, one
-/// solve").
+}  // namespace
+
+// The default (longest_contact_substep_s unset, 0): 0.5 ms from 250 control points up, none below.
+// Measured at 120 Hz (4 substeps of 2.1 ms), unexplained energy against the car's initial kinetic energy:
+// traffic's pile of four cars, the runner at 1,000 points -2150 % -> -8 %, at 250 points -488 % -> -5 %;
+// east4 against its tree at 250 points -17 % -> +0.8 %. At 60 points the shorter substeps made the pile worse
+// (-11 % -> -46 %), so the coarse levels keep their own (docs/CRASH_CALIBRATION.md, "Two cars, one
+// solve").
 double contactSubstep_s(const DeformationSettings& s) {
   constexpr std::size_t kFinestWithout = 250;
   constexpr double kLongestFine_s = 0.5e-3;
   if (s.longest_contact_substep_s > 0) return s.longest_contact_substep_s;
   return s.control_points >= kFinestWithout ? kLongestFine_s : HUGE_VAL;
 }
-
-}  // namespace
 
 double kineticEnergy(const Car& car) {
   const Eigen::Vector3d v = car.velocity_mps();

@@ -118,6 +118,11 @@ struct DeformationSettings {
 /// Throws deform::InputError naming the member ("vehicle.deformation.<member>") for a value out of range.
 void checkDeformationSettings(const DeformationSettings& settings);
 
+/// The longest substep deform takes in a step with an obstacle or another car in contact [s]
+/// (DeformationSettings::longest_contact_substep_s, or its default by the control points); HUGE_VAL for
+/// none (the substeps alone).
+double contactSubstep_s(const DeformationSettings& settings);
+
 /// Energy of a run since the car's first impact [J], in the world frame. Every term is measured on its
 /// own: the whole car's kinetic energy (ODE chassis plus the shell's point masses), the work of every
 /// force ODE applies to the chassis, and in the body its plastic work (force x plastic flow), viscous
