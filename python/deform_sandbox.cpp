@@ -62,8 +62,8 @@ class Scene {
     const vehicle::Simulation& simulation = run_->simulation();
     const vehicle::CarId id = run_->carId(car);
     if (!skins_[car]) {
-      skins_[car] = std::make_unique<scenes::CarSkin>(run_->model(car).body, simulation.controlRestPoints(id),
-                                                      simulation.deformationSettings(id));
+      skins_[car] = std::make_unique<scenes::CarSkin>(builds_.get(
+          run_->model(car).body, simulation.controlRestPoints(id), simulation.deformationSettings(id)));
     }
     const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(id);
     scenes::SkinObstacles obstacles;
@@ -75,6 +75,7 @@ class Scene {
 
  private:
   std::unique_ptr<scenes::SceneRun> run_;
+  scenes::CarSkinBuilds builds_;  ///< shared by the cars of one build
   std::vector<std::unique_ptr<scenes::CarSkin>> skins_;
 };
 

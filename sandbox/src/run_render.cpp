@@ -8,9 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <map>
 #include <memory>
-#include <tuple>
 
 #include "render/heat_colours.hpp"
 #include "render/vehicle_meshes.hpp"
@@ -119,23 +117,14 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
   auto start = Clock::now();
   const vehicle::Simulation& simulation = run.simulation();
   // Cars of one build (the same loaded model and shared control mesh) with the same skin settings share
-  // one set of weights, rest copy, triangles and grid (DESIGN.md section 8); the addresses stay put for
-  // the run.
-  using SkinKey = std::tuple<const void*, const void*, double, std::size_t, int>;
-  std::map<SkinKey, std::shared_ptr<const scenes::CarSkin::Build>> builds;
+  // one set of weights, rest copy, triangles and grid (DESIGN.md section 8).
+  scenes::CarSkinBuilds builds;
   for (std::size_t i = 0; i < run.carCount(); ++i) {
     CarMeshes car;
     const vehicle::CarId id = run.carId(i);
     const vehicle::DeformationSettings& settings = simulation.deformationSettings(id);
-    const SkinKey key{&run.model(i).body, &simulation.controlRestPoints(id), settings.alpha,
-                      settings.k_nearest, static_cast<int>(settings.skin_method)};
-    std::shared_ptr<const scenes::CarSkin::Build>& build = builds[key];
-    if (!build) {
-      build = scenes::CarSkin::share(
-          run.model(i).body,
-          scenes::CarSkin::buildSkin(run.model(i).body, simulation.controlRestPoints(id), settings));
-    }
-    car.skin = std::make_unique<scenes::CarSkin>(build);
+    car.skin = std::make_unique<scenes::CarSkin>(
+        builds.get(run.model(i).body, simulation.controlRestPoints(id), settings));
     for (const vehicle::WheelSettings& w : simulation.world().car(id).wheelSettings())
       car.hub_rest_m.push_back(w.centre_m.cast<float>());
     if (!car.hub_rest_m.empty()) {

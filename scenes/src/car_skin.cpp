@@ -191,4 +191,14 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   return changed;
 }
 
+std::shared_ptr<const CarSkin::Build> CarSkinBuilds::get(const deform::Mesh& body,
+                                                         const std::vector<Eigen::Vector3d>& control_rest_m,
+                                                         const vehicle::DeformationSettings& settings) {
+  const Key key{&body, &control_rest_m, settings.alpha, settings.k_nearest,
+                static_cast<int>(settings.skin_method)};
+  std::shared_ptr<const CarSkin::Build>& build = builds_[key];
+  if (!build) build = CarSkin::share(body, CarSkin::buildSkin(body, control_rest_m, settings));
+  return build;
+}
+
 }  // namespace scenes

@@ -96,3 +96,20 @@ TEST_CASE("cars of one build share one skin and deform as with their own", "[car
   CHECK(a.normals() == own.normals());
   CHECK(b.positions() == car.body.positions_m);
 }
+
+TEST_CASE("a run's cars of one body, control mesh and skin settings get one build", "[car_skin]") {
+  const deform::VehicleModel car = deform::makeSedan(2000);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
+  const std::vector<Eigen::Vector3d> control = deform::buildControlMesh(points, 60).points_m;
+  const std::vector<Eigen::Vector3d> other_control = control;  // equal values, another control mesh
+  vehicle::DeformationSettings settings, sharper;
+  sharper.alpha = settings.alpha + 1;
+  scenes::CarSkinBuilds builds;
+  const auto first = builds.get(car.body, control, settings);
+  CHECK(builds.get(car.body, control, settings) == first);
+  CHECK(builds.get(car.body, control, sharper) != first);
+  CHECK(builds.get(car.body, other_control, settings) != first);
+  CHECK(first->rest_m == car.body.positions_m);
+  CHECK(first->triangles.size() == car.body.triangles.size());
+}

@@ -15,7 +15,9 @@
 #include <deform/vertex_normals.hpp>
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -117,6 +119,20 @@ class CarSkin {
   std::vector<std::pair<uint32_t, Eigen::Vector3f>> restored_;
   std::vector<uint32_t> candidates_;  ///< scratch
   ProjectionStats last_projection_;
+};
+
+/// The shared builds of a run's cars: one per body mesh, control mesh and skin settings (DESIGN.md
+/// section 8). Keyed by the addresses of the body and of the control points, which stay put for the run
+/// (scenes::SceneRun's models and vehicle::Simulation's control meshes).
+class CarSkinBuilds {
+ public:
+  std::shared_ptr<const CarSkin::Build> get(const deform::Mesh& body,
+                                            const std::vector<Eigen::Vector3d>& control_rest_m,
+                                            const vehicle::DeformationSettings& settings);
+
+ private:
+  using Key = std::tuple<const void*, const void*, double, std::size_t, int>;
+  std::map<Key, std::shared_ptr<const CarSkin::Build>> builds_;
 };
 
 }  // namespace scenes
