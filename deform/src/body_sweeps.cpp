@@ -83,12 +83,16 @@ void DeformableBody::sweepConstraints() {
         const double taken = column_taken_m_[k];    // what hardening has added to its yield, and whether it
         const bool bottomed = column_bottomed_[k];  // has crushed to its clamp (refreshColumn)
         const double to_lambda = h2 / c.compliance_m_per_N;
-        projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k],
-                      [&](const Eigen::Vector3d& push) {
-                        // The column pushes along lambda: its point is displaced along -lambda.
-                        if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
-                        return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
-                      });
+        projectColumn(
+            x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k],
+            [&](const Eigen::Vector3d& push) {
+              // The column pushes along lambda: its point is displaced along -lambda.
+              if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
+              return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
+            },
+            [&](const Eigen::Vector3d& next) {
+              return columnSurelyWithinLimit(normals[k], next, spoke_limits[k], to_lambda, bottomed);
+            });
       } else {
         projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k], nullptr);
       }

@@ -93,16 +93,26 @@ inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w
 /// one isotropic compliance, eq. 17, 18) between a control point `x` (inverse mass `w` [1/kg]) and the
 /// place `target` [m] where the column holds it now, which moves with the core (inverse mass `w_core`;
 /// 0 = kinematic). The multiplier `lambda` [N s^2] is a vector; when `lambda_limit` is given it is the
-/// largest |lambda| the column carries in the direction it pushes (a force-limited column). Returns |C|
-/// before the projection [m].
-template <typename Limit>
+/// largest |lambda| the column carries in the direction it pushes (a force-limited column); `surely_within`,
+/// when given, says without a square root that a multiplier is certainly within that limit (it must
+/// never say so of one beyond it), which spares the limit's evaluation. Returns |C| before the
+/// projection [m].
+template <typename Limit, typename Within = std::nullptr_t>
 inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w, double w_core,
-                            double alpha_tilde, Eigen::Vector3d& lambda, Limit&& lambda_limit) {
+                            double alpha_tilde, Eigen::Vector3d& lambda, Limit&& lambda_limit,
+                            Within&& surely_within = nullptr) {
   const double sum = w + w_core;
   if (sum + alpha_tilde <= 0) return 0;
   const Eigen::Vector3d c = x - target;
   Eigen::Vector3d next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
+  bool within = false;
+  if constexpr (!std::is_same_v<std::decay_t<Within>, std::nullptr_t>) within = surely_within(next);
   if constexpr (!std::is_same_v<std::decay_t<Limit>, std::nullptr_t>) {
+    if (within) {
+      x += w * (next - lambda);
+      lambda = next;
+      return c.norm();
+    }
     const double magnitude = next.norm();
     if (magnitude > 0) {
       const double limit = lambda_limit(next / magnitude);
@@ -290,6 +300,18 @@ inline bool columnSurelyElastic(const Eigen::Vector3d& normal, const Eigen::Vect
   const double along = normal.dot(elastic);
   return elastic.squaredNorm() * (1 + 1e-9) <=
          (along < 0 ? yield.shorten_m : yield.stretch_m) * std::abs(along);
+}
+
+/// True when a force-limited crush column's multiplier `next` [N s^2] is certainly within the limit its
+/// sweep puts on it (to_lambda x columnYield_m along its push, infinite once bottomed out and pushing in),
+/// found without a square root: |next|^2 (1 + 1e-9) <= to_lambda s |n . next|, the yield along the normal
+/// alone (taken >= 0 only adds). False does not mean it is beyond: the limit decides.
+inline bool columnSurelyWithinLimit(const Eigen::Vector3d& normal, const Eigen::Vector3d& next,
+                                    const YieldLimits& yield, double to_lambda, bool bottomed) {
+  const double along = normal.dot(next);  // > 0: the column pushes its point in (it is shortened)
+  if (bottomed && along > 0) return true;
+  const double yield_m = along > 0 ? yield.shorten_m : yield.stretch_m;
+  return next.squaredNorm() * (1 + 1e-9) <= to_lambda * yield_m * std::abs(along);
 }
 
 /// Return map of a crush column's rest place (the 1D return map of plasticRestLength along the

@@ -114,6 +114,43 @@ TEST_CASE("a column called surely elastic never flows", "[dynamics]") {
   CHECK(sure > 1000);
 }
 
+TEST_CASE("a column multiplier called surely within its limit is never clamped", "[dynamics]") {
+  // The force-limited sweep skips the limit for such a multiplier: the full projection (the limit
+  // evaluated) must then move the point and the multiplier exactly as the shortcut does.
+  std::mt19937 random(13);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int sure = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Vector3d normal = Eigen::Vector3d(gauss(random), gauss(random), gauss(random)).normalized();
+    const deform::YieldLimits yield{0.02 * unit(random), 0.02 * unit(random)};
+    const double to_lambda = 1e-3 * unit(random), taken = trial % 2 == 0 ? 0.0 : 0.01 * unit(random);
+    const bool bottomed = trial % 5 == 0;
+    const Eigen::Vector3d target(gauss(random), gauss(random), gauss(random));
+    const Eigen::Vector3d start =
+        target + 1e-4 * Eigen::Vector3d(gauss(random), gauss(random), gauss(random));
+    const double w = 1.0 + unit(random), w_core = 0.01 * unit(random), alpha_tilde = unit(random);
+    auto limit = [&](const Eigen::Vector3d& push) {
+      if (bottomed && normal.dot(push) > 0) return HUGE_VAL;
+      return to_lambda * deform::columnYield_m(normal, -push, yield, taken);
+    };
+    Eigen::Vector3d full_x = start, full_lambda{0, 0, 0};
+    deform::projectColumn(full_x, target, w, w_core, alpha_tilde, full_lambda, limit);
+    bool said = false;
+    Eigen::Vector3d short_x = start, short_lambda{0, 0, 0};
+    deform::projectColumn(short_x, target, w, w_core, alpha_tilde, short_lambda, limit,
+                          [&](const Eigen::Vector3d& next) {
+                            said = deform::columnSurelyWithinLimit(normal, next, yield, to_lambda, bottomed);
+                            return said;
+                          });
+    REQUIRE(short_x == full_x);
+    REQUIRE(short_lambda == full_lambda);
+    sure += said;
+  }
+  CHECK(sure > 1000);
+  CHECK(sure < 20000);  // and the limit does bind on some
+}
+
 TEST_CASE("the visual constraint projects onto the ball around the start", "[dynamics]") {
   Eigen::Vector3d x(3, 4, 0);
   CHECK(deform::projectVisual(x, Eigen::Vector3d::Zero(), 1.0));
