@@ -94,19 +94,31 @@ TEST_CASE("the cached elastic band never skips a flow, and is tight to 1e-8", "[
   CHECK(deform::elasticBand(0.0, 1.0, {0.01, 0.01}, PlasticLaw{0, 0.5, 1.5}).holds(1e6));
 }
 
+namespace {
+
+/// Seeded random draws for the shortcut tests (every run checks the same cases).
+struct Draws {
+  explicit Draws(unsigned seed) : random(seed) {}
+  double unit() { return uniform(random); }
+  Eigen::Vector3d gaussian() { return {gauss(random), gauss(random), gauss(random)}; }
+  Eigen::Vector3d direction() { return gaussian().normalized(); }
+  std::mt19937 random;
+  std::normal_distribution<double> gauss{0.0, 1.0};
+  std::uniform_real_distribution<double> uniform{0.0, 1.0};
+};
+
+}  // namespace
+
 TEST_CASE("a column called surely elastic never flows", "[dynamics]") {
-  std::mt19937 random(11);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Draws draw(11);
   int sure = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const Eigen::Vector3d normal = Eigen::Vector3d(gauss(random), gauss(random), gauss(random)).normalized();
-    const Eigen::Vector3d original(gauss(random), gauss(random), gauss(random));
-    const Eigen::Vector3d rest = original - 0.05 * unit(random) * normal;
-    const deform::YieldLimits yield{0.02 * unit(random), 0.02 * unit(random)};
-    const PlasticLaw law{trial % 2 == 0 ? 0.0 : unit(random), 0.2, 1.0};
-    const Eigen::Vector3d elastic =
-        0.03 * unit(random) * Eigen::Vector3d(gauss(random), gauss(random), gauss(random));
+    const Eigen::Vector3d normal = draw.direction();
+    const Eigen::Vector3d original = draw.gaussian();
+    const Eigen::Vector3d rest = original - 0.05 * draw.unit() * normal;
+    const deform::YieldLimits yield{0.02 * draw.unit(), 0.02 * draw.unit()};
+    const PlasticLaw law{trial % 2 == 0 ? 0.0 : draw.unit(), 0.2, 1.0};
+    const Eigen::Vector3d elastic = 0.03 * draw.unit() * draw.gaussian();
     if (!deform::columnSurelyElastic(normal, elastic, yield)) continue;
     ++sure;
     REQUIRE(deform::plasticColumnRest(rest + elastic, rest, original, normal, 0.5, yield, law) == rest);
@@ -117,19 +129,16 @@ TEST_CASE("a column called surely elastic never flows", "[dynamics]") {
 TEST_CASE("a column multiplier called surely within its limit is never clamped", "[dynamics]") {
   // The force-limited sweep skips the limit for such a multiplier: the full projection (the limit
   // evaluated) must then move the point and the multiplier exactly as the shortcut does.
-  std::mt19937 random(13);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Draws draw(13);
   int sure = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const Eigen::Vector3d normal = Eigen::Vector3d(gauss(random), gauss(random), gauss(random)).normalized();
-    const deform::YieldLimits yield{0.02 * unit(random), 0.02 * unit(random)};
-    const double to_lambda = 1e-3 * unit(random), taken = trial % 2 == 0 ? 0.0 : 0.01 * unit(random);
+    const Eigen::Vector3d normal = draw.direction();
+    const deform::YieldLimits yield{0.02 * draw.unit(), 0.02 * draw.unit()};
+    const double to_lambda = 1e-3 * draw.unit(), taken = trial % 2 == 0 ? 0.0 : 0.01 * draw.unit();
     const bool bottomed = trial % 5 == 0;
-    const Eigen::Vector3d target(gauss(random), gauss(random), gauss(random));
-    const Eigen::Vector3d start =
-        target + 1e-4 * Eigen::Vector3d(gauss(random), gauss(random), gauss(random));
-    const double w = 1.0 + unit(random), w_core = 0.01 * unit(random), alpha_tilde = unit(random);
+    const Eigen::Vector3d target = draw.gaussian();
+    const Eigen::Vector3d start = target + 1e-4 * draw.gaussian();
+    const double w = 1.0 + draw.unit(), w_core = 0.01 * draw.unit(), alpha_tilde = draw.unit();
     auto limit = [&](const Eigen::Vector3d& push) {
       if (bottomed && normal.dot(push) > 0) return HUGE_VAL;
       return to_lambda * deform::columnYield_m(normal, -push, yield, taken);
