@@ -56,9 +56,10 @@ class Scene {
   scenes::SceneRun& run() { return *run_; }
   const scenes::SceneRun& run() const { return *run_; }
 
-  /// The deformed render mesh of car `car` now (vehicle frame), as the renderer draws it: the skin of
-  /// the control points, vertices inside an obstacle projected onto its surface (sandbox's deformedBody).
-  deform::Mesh mesh(std::size_t car) {
+  /// The skin of car `car` with its deformed render mesh now (vehicle frame), as the renderer draws it: the
+  /// skin of the control points, vertices inside an obstacle projected onto its surface (sandbox's
+  /// deformedBody).
+  const scenes::CarSkin& skin(std::size_t car) {
     const vehicle::Simulation& simulation = run_->simulation();
     const vehicle::CarId id = run_->carId(car);
     if (!skins_[car]) {
@@ -70,7 +71,7 @@ class Scene {
     obstacles.gather(simulation, id, skins_[car]->restBounds(),
                      skins_[car]->displacementBound_m(displacements));
     skins_[car]->update(displacements, obstacles.shapes());
-    return skins_[car]->deformedMesh();
+    return *skins_[car];
   }
 
  private:
@@ -183,11 +184,11 @@ PYBIND11_MODULE(deform_sandbox, m) {
       .def(
           "mesh_vertices",
           [](const Car& c) {
-            const deform::Mesh& mesh = c.scene().mesh(c.index);
-            py::array_t<float> out({static_cast<py::ssize_t>(mesh.positions_m.size()), py::ssize_t{3}});
+            const std::vector<Eigen::Vector3f>& positions = c.scene().skin(c.index).positions();
+            py::array_t<float> out({static_cast<py::ssize_t>(positions.size()), py::ssize_t{3}});
             auto a = out.mutable_unchecked<2>();
-            for (std::size_t j = 0; j < mesh.positions_m.size(); ++j)
-              for (py::ssize_t k = 0; k < 3; ++k) a(static_cast<py::ssize_t>(j), k) = mesh.positions_m[j][k];
+            for (std::size_t j = 0; j < positions.size(); ++j)
+              for (py::ssize_t k = 0; k < 3; ++k) a(static_cast<py::ssize_t>(j), k) = positions[j][k];
             return out;
           },
           "The dented render mesh now, vehicle frame [m] (V x 3 float32; skinned on request)")
