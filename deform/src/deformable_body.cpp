@@ -55,12 +55,12 @@ void DeformableBody::refreshYieldForces() {
   for (std::size_t k = 0; k < s.spokes.size(); ++k)
     spoke_band_[k] =
         elasticBand(state_.spoke_rest_m[k], s.spoke_rest_m[k], s.spoke_yield[k], laws[s.spokes[k].material]);
-  column_taken_m_.resize(s.spokes.size());
-  column_bottomed_.resize(s.spokes.size());
-  for (std::size_t k = 0; k < s.spokes.size(); ++k) refreshColumn(k);
   for (std::size_t k = 0; k < s.bends.size(); ++k)
     bend_band_[k] =
         elasticBand(state_.bend_rest_m[k], s.bend_rest_m[k], s.bend_yield[k], laws[s.bends[k].material]);
+  column_taken_m_.resize(s.spokes.size());
+  column_bottomed_.resize(s.spokes.size());
+  for (std::size_t k = 0; k < s.spokes.size(); ++k) refreshColumn(k);
   edge_yield_N_.resize(s.edges.size());
   spoke_yield_N_.resize(s.spokes.size());
   bend_yield_N_.resize(s.bends.size());

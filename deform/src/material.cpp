@@ -50,10 +50,10 @@ void checkSolverParams(const SolverParams& params) {
   requireNonNegative(params.damping_per_s, "damping_per_s");
   requireNonNegative(params.inertial_scale, "inertial_scale");
   requireNonNegative(params.contact_margin_m, "contact_margin_m");
-  if (std::isnan(params.longest_contact_substep_s) || !(params.longest_contact_substep_s > 0))
+  if (!(params.longest_contact_substep_s > 0))
     throw InputError("longest_contact_substep_s: must be > 0 (infinite: substeps alone) (got " +
                      std::to_string(params.longest_contact_substep_s) + ")");
-  if (std::isnan(params.max_depenetration_mps) || !(params.max_depenetration_mps > 0))
+  if (!(params.max_depenetration_mps > 0))
     throw InputError("max_depenetration_mps: must be > 0 (infinite: no cap) (got " +
                      std::to_string(params.max_depenetration_mps) + ")");
   requireNonNegative(params.sleep_speed_mps, "sleep_speed_mps");

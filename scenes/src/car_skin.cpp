@@ -22,9 +22,14 @@ std::shared_ptr<const CarSkin::Build> CarSkin::share(const deform::Mesh& body,
   auto build = std::make_shared<Build>();
   build->skin = std::move(skin);
   build->rest_m = body.positions_m;
-  if (body.normals.size() == body.positions_m.size()) build->rest_normals = body.normals;
   build->triangles = body.triangles;
   build->around = std::make_shared<const deform::VertexTriangles>(body.triangles, body.positions_m.size());
+  // The body's own normals until something moves; without them, computed here once for every car.
+  build->normals_from_triangles = body.normals.size() != body.positions_m.size();
+  if (build->normals_from_triangles)
+    deform::VertexNormals(build->around).computeAll(body.positions_m, body.triangles, build->rest_normals);
+  else
+    build->rest_normals = body.normals;
   build->grid = deform::VertexGrid(body.positions_m);
   build->interior_m = 0.5 * (build->grid.bounds().min_m + build->grid.bounds().max_m);
   // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
@@ -50,9 +55,6 @@ CarSkin::CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& c
                  const vehicle::DeformationSettings& settings)
     : CarSkin(share(body, buildSkin(body, control_rest_m, settings))) {}
 
-CarSkin::CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin)
-    : CarSkin(share(body, std::move(skin))) {}
-
 CarSkin::CarSkin(std::shared_ptr<const Build> build)
     : build_(std::move(build)),
       positions_m_(build_->rest_m),
@@ -60,12 +62,8 @@ CarSkin::CarSkin(std::shared_ptr<const Build> build)
       last_displacements_m_(build_->skin->controlPointCount(), Eigen::Vector3d::Zero()),
       moved_(build_->skin->controlPointCount(), 0),
       normal_updates_(build_->around),
-      is_projected_(build_->rest_m.size(), 0) {
-  if (normals_.size() != positions_m_.size()) {
-    normal_updates_.computeAll(positions_m_, build_->triangles, normals_);
-    normals_computed_ = true;
-  }
-}
+      normals_computed_(build_->normals_from_triangles),
+      is_projected_(build_->rest_m.size(), 0) {}
 
 deform::Mesh CarSkin::deformedMesh() const {
   deform::Mesh mesh;

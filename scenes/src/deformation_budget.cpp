@@ -1,6 +1,8 @@
 // Levels of detail with their measured cost, and the deformation budget (deformation_budget.hpp).
 #include <scenes/deformation_budget.hpp>
 
+#include <deform/solver_params.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -155,10 +157,11 @@ double contactCostScale(const DeformationLevel& level, const vehicle::Deformatio
                         double step_s) {
   vehicle::DeformationSettings settings = car;
   applyLevel(level, settings);
-  const double longest_s = vehicle::contactSubstep_s(settings);
-  if (!(step_s > 0) || !std::isfinite(longest_s)) return 1.0;
-  const int substeps = std::max(level.substeps, static_cast<int>(std::ceil(step_s / longest_s - 1e-9)));
-  return static_cast<double>(substeps) / static_cast<double>(std::max(level.substeps, 1));
+  const auto substeps = static_cast<uint32_t>(std::max(level.substeps, 1));
+  if (!(step_s > 0)) return 1.0;
+  // The substeps deform takes in contact (deform::substepsNoLongerThan, as DeformableBody::beginStep).
+  const uint32_t taken = deform::substepsNoLongerThan(step_s, substeps, vehicle::contactSubstep_s(settings));
+  return static_cast<double>(taken) / static_cast<double>(substeps);
 }
 
 BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps) {

@@ -105,15 +105,10 @@ inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, d
   if (sum + alpha_tilde <= 0) return 0;
   const Eigen::Vector3d c = x - target;
   Eigen::Vector3d next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
-  bool within = false;
-  if constexpr (!std::is_same_v<std::decay_t<Within>, std::nullptr_t>) within = surely_within(next);
   if constexpr (!std::is_same_v<std::decay_t<Limit>, std::nullptr_t>) {
-    if (within) {
-      x += w * (next - lambda);
-      lambda = next;
-      return c.norm();
-    }
-    const double magnitude = next.norm();
+    bool within = false;
+    if constexpr (!std::is_same_v<std::decay_t<Within>, std::nullptr_t>) within = surely_within(next);
+    const double magnitude = within ? 0.0 : next.norm();
     if (magnitude > 0) {
       const double limit = lambda_limit(next / magnitude);
       if (magnitude > limit) next *= limit / magnitude;
@@ -256,10 +251,14 @@ inline double plasticRestLength(double length_m, double rest_m, double original_
   return std::clamp(moved, law.min_rest_fraction * original_rest_m, law.max_rest_fraction * original_rest_m);
 }
 
+/// Relative margin of the square-root-free "surely" tests below (elastic bands, columns): a value this
+/// close to a bound goes to the exact test, so rounding can never make a shortcut skip a flow or a clamp.
+inline constexpr double kSurelyMargin = 1e-9;
+
 /// The squared lengths [m^2] strictly between which plasticRestLength leaves a rest length alone, with a
-/// relative margin of 1e-9 inside the exact bounds (rest - shorten - taken, rest + stretch + taken) so that
-/// rounding can never make it skip a flow. Plasticity visits every constraint every substep and nearly all
-/// of them are elastic: with the band cached per constraint, those cost a squared length and two
+/// relative margin of kSurelyMargin inside the exact bounds (rest - shorten - taken, rest + stretch + taken)
+/// so that rounding can never make it skip a flow. Plasticity visits every constraint every substep and
+/// nearly all of them are elastic: with the band cached per constraint, those cost a squared length and two
 /// comparisons, not a square root and a return map. A constraint whose rest length flows gets a new band.
 struct ElasticBand {
   double shortest_m2 = -1;       ///< below (or at) this squared length it may flow in compression
@@ -270,12 +269,11 @@ inline ElasticBand elasticBand(double rest_m, double original_rest_m, const Yiel
                                const PlasticLaw& law) {
   ElasticBand band;
   if (!(rest_m > 0) || !(original_rest_m > 0)) return band;  // plasticRestLength never moves it
-  constexpr double kMargin = 1e-9;
   const double taken = law.hardening * std::abs(rest_m - original_rest_m);
   const double longest = rest_m + yield.stretch_m + taken;
   const double shortest = rest_m - (yield.shorten_m + taken);
-  band.longest_m2 = longest * longest * (1 - kMargin);
-  band.shortest_m2 = shortest > 0 ? shortest * shortest * (1 + kMargin) : -1;
+  band.longest_m2 = longest * longest * (1 - kSurelyMargin);
+  band.shortest_m2 = shortest > 0 ? shortest * shortest * (1 + kSurelyMargin) : -1;
   return band;
 }
 
@@ -292,26 +290,26 @@ inline double columnYield_m(const Eigen::Vector3d& normal, const Eigen::Vector3d
 }
 
 /// True when a crush column displaced by `elastic` (x - rest) [m] is certainly within its yield, found
-/// without a square root: |e|^2 (1 + 1e-9) <= s |n . e|, with s its yield along the normal alone, which
+/// without a square root: |e|^2 (1 + margin) <= s |n . e|, with s its yield along the normal alone, which
 /// is at most what plasticColumnRest allows (|e| <= s |n . e| / |e| + taken, taken >= 0). False does not
 /// mean it flows: plasticColumnRest decides.
 inline bool columnSurelyElastic(const Eigen::Vector3d& normal, const Eigen::Vector3d& elastic,
                                 const YieldLimits& yield) {
   const double along = normal.dot(elastic);
-  return elastic.squaredNorm() * (1 + 1e-9) <=
+  return elastic.squaredNorm() * (1 + kSurelyMargin) <=
          (along < 0 ? yield.shorten_m : yield.stretch_m) * std::abs(along);
 }
 
 /// True when a force-limited crush column's multiplier `next` [N s^2] is certainly within the limit its
 /// sweep puts on it (to_lambda x columnYield_m along its push, infinite once bottomed out and pushing in),
-/// found without a square root: |next|^2 (1 + 1e-9) <= to_lambda s |n . next|, the yield along the normal
+/// found without a square root: |next|^2 (1 + margin) <= to_lambda s |n . next|, the yield along the normal
 /// alone (taken >= 0 only adds). False does not mean it is beyond: the limit decides.
 inline bool columnSurelyWithinLimit(const Eigen::Vector3d& normal, const Eigen::Vector3d& next,
                                     const YieldLimits& yield, double to_lambda, bool bottomed) {
   const double along = normal.dot(next);  // > 0: the column pushes its point in (it is shortened)
   if (bottomed && along > 0) return true;
   const double yield_m = along > 0 ? yield.shorten_m : yield.stretch_m;
-  return next.squaredNorm() * (1 + 1e-9) <= to_lambda * yield_m * std::abs(along);
+  return next.squaredNorm() * (1 + kSurelyMargin) <= to_lambda * yield_m * std::abs(along);
 }
 
 /// Return map of a crush column's rest place (the 1D return map of plasticRestLength along the

@@ -30,8 +30,10 @@ class CarSkin {
   /// flags per vertex (`sandbox bench memory`).
   struct Build {
     std::shared_ptr<const deform::Skin> skin;
-    std::vector<Eigen::Vector3f> rest_m;        ///< the body's vertices [m]
-    std::vector<Eigen::Vector3f> rest_normals;  ///< the body's own normals (empty: computed)
+    std::vector<Eigen::Vector3f> rest_m;  ///< the body's vertices [m]
+    /// The rest normals: the body's own, or (normals_from_triangles) computed once from the triangles.
+    std::vector<Eigen::Vector3f> rest_normals;
+    bool normals_from_triangles = false;
     std::vector<deform::Triangle> triangles;
     std::shared_ptr<const deform::VertexTriangles> around;  ///< triangles around each vertex
     deform::VertexGrid grid;              ///< rest positions, for the vertices near an obstacle
@@ -55,8 +57,6 @@ class CarSkin {
   /// k_nearest and skin_method.
   CarSkin(const deform::Mesh& body, const std::vector<Eigen::Vector3d>& control_rest_m,
           const vehicle::DeformationSettings& settings);
-  /// A car with a build of its own around weights built beforehand by buildSkin for `body`.
-  CarSkin(const deform::Mesh& body, std::shared_ptr<const deform::Skin> skin);
 
   /// Moves the vertices for control-point displacements c_i - c_i0 [m]; recomputes only the vertices of
   /// points whose displacement changed since the last update, and the normals of the vertices sharing a
