@@ -75,6 +75,12 @@ void Simulation::Impl::solveGroup(const std::vector<std::size_t>& group) {
       link.velocity_mps =
           ra.transpose() * (velocityOf(partner, core_world_m) - velocityOf(self, core_world_m));
       link.angular_velocity_radps = ra.transpose() * (angularVelocityOf(partner) - angularVelocityOf(self));
+      // Visual: the two bodies meet where their ghosts are (DeformableCar::ghost_velocity_mps; zero in the
+      // crush coupling).
+      if (ca.settings.coupling == Coupling::Visual) {
+        link.translation_b_to_a_m += link.rotation_b_to_a * cb.ghost_offset_m - ca.ghost_offset_m;
+        link.velocity_mps += link.rotation_b_to_a * cb.ghost_velocity_mps - ca.ghost_velocity_mps;
+      }
       link.friction = std::sqrt(ca.settings.contact_friction * cb.settings.contact_friction);
       links.push_back(link);
     }

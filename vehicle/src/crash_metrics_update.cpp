@@ -114,8 +114,9 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   // counts how the two turn and slide about each other after the hit: cars pressed into a pile-up
   // "crushed" 3.5-5.7 m with their points never 0.2 m from rest. There it is the body's own crush: the
   // largest motion of a control point back from its rest place along the impact direction.
-  const bool fixed =
-      dc.impact_other.kind == EntityRef::Kind::Obstacle && !world.obstacleIsDynamic(dc.impact_other.index);
+  const bool fixed = dc.impact_other.kind == EntityRef::Kind::Obstacle &&
+                     !world.obstacleIsDynamic(dc.impact_other.index) &&
+                     dc.settings.coupling == Coupling::Crush;
   const double separation =
       dc.impact_normal.dot(car.bodyPose().position_m - interiorPoint(worldShapeOf(dc.impact_other)));
   if (fixed) {

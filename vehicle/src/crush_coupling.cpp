@@ -30,7 +30,7 @@ bool standsOnGround(const ObstacleShape& shape) {
 bool Simulation::Impl::pairsWith(const DeformableCar& dc, EntityRef other) const {
   if (other.kind != EntityRef::Kind::Car || other.index >= index_of.size() || index_of[other.index] < 0)
     return false;
-  return dc.settings.coupling == Coupling::Crush && of(other.index).settings.coupling == Coupling::Crush;
+  return dc.settings.coupling == of(other.index).settings.coupling;
 }
 
 void Simulation::Impl::addApproaching(DeformableCar& dc) const {
@@ -50,9 +50,15 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
   const Eigen::Vector3d self_radps = car.angularVelocity_rad_s();
   auto consider = [&](EntityRef other, const Box& box, const Eigen::Vector3d& other_mps,
                       const Eigen::Vector3d& other_radps) {
+    // Visual: what a ghost is in stays in reach while the chassis bounces off it.
+    const DeformableCar* other_car = visualCar(other);
+    const double ghost_m = dc.ghost_offset_m.norm() + (other_car ? other_car->ghost_offset_m.norm() : 0.0);
+    const double ghost_mps =
+        dc.ghost_velocity_mps.norm() + (other_car ? other_car->ghost_velocity_mps.norm() : 0.0);
     const double closing_mps = (other_mps - self_mps).norm() +
-                               (other_radps - self_radps).norm() * mine.halfDiagonal_m() + fastest_point_mps;
-    if (mine.grown(closing_mps * world.fixedDt_s() + kApproachMargin_m).overlaps(box) &&
+                               (other_radps - self_radps).norm() * mine.halfDiagonal_m() + fastest_point_mps +
+                               ghost_mps;
+    if (mine.grown(closing_mps * world.fixedDt_s() + kApproachMargin_m + ghost_m).overlaps(box) &&
         std::find(dc.touching.begin(), dc.touching.end(), other) == dc.touching.end())
       dc.touching.push_back(other);
   };
@@ -74,7 +80,7 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
         (fastest_car_mps + self_mps.norm() +
          (fastest_turn_radps + self_radps.norm()) * mine.halfDiagonal_m() + fastest_point_mps) *
             dt +
-        kApproachMargin_m;
+        kApproachMargin_m + dc.ghost_offset_m.norm() + dc.ghost_velocity_mps.norm() * dt + largest_ghost_m;
     const double reach_m = (c_m + 2.0 * fastest_turn_radps * dt * largest_half_diagonal_m) / (1.0 - turn);
     car_grid.near(mine.grown(1.01 * reach_m + 1e-6), candidates);
   } else {
@@ -106,11 +112,11 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
       dc.touching.push_back(c.other);
   dc.in_ode_contact = dc.touching.size();
   addApproaching(dc);
-  // Another deformable car, both in the crush coupling: the two bodies are stepped as one (deform's
-  // stepGroup, Simulation::step), each meeting the other's surface as it deforms; not a shape here.
+  // Another deformable car in the same coupling: the two bodies are stepped as one (deform's stepGroup,
+  // Simulation::step), each meeting the other's surface as it deforms; not a shape here.
   dc.partners.clear();
   dc.partner_in_ode.clear();
-  if (crush) {
+  {
     std::size_t kept = 0, kept_in_ode = 0;
     for (std::size_t k = 0; k < dc.touching.size(); ++k) {
       const EntityRef other = dc.touching[k];
@@ -132,6 +138,8 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   // pitches turns the other way.
   const Eigen::Vector3d core_world_m = frame.position_m + frame.orientation * dc.body_settings->core_m;
   const EntityRef self{EntityRef::Kind::Car, dc.id};
+  // Visual: ODE's rigid contact stopped the chassis; the body meets what it hit where the car would be
+  // without that contact (the ghost, advanceGhost).
   dc.frame_velocity_mps = to_vehicle * velocityOf(self, core_world_m);
   dc.frame_omega_radps = to_vehicle * car.angularVelocity_rad_s();
   dc.inputs = {};
@@ -140,9 +148,13 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   dc.shapes.clear();
   for (const EntityRef& other : dc.touching) {
     const ObstacleShape world_shape = worldShapeOf(other);
-    const ObstacleShape local = transformShape(world_shape, frame);
-    const Eigen::Vector3d relative_mps =
+    ObstacleShape local = transformShape(world_shape, frame);
+    Eigen::Vector3d relative_mps =
         to_vehicle * (velocityOf(other, core_world_m) - velocityOf(self, core_world_m));
+    if (!crush) {  // met by the ghost (another visual car is a partner, not a shape)
+      local = transformShape(local, {dc.ghost_offset_m, {1, 0, 0, 0}});
+      relative_mps -= dc.ghost_velocity_mps;
+    }
     const Eigen::Vector3d relative_radps =
         to_vehicle * (angularVelocityOf(other) - car.angularVelocity_rad_s());
     // Sweep away from the car, against the contact normals. A point can be as deep as the deepest contact
@@ -182,15 +194,13 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
   if (crush) inputs.core_mass_kg = car.chassisMass_kg();
 
-  // Visual (and vegetation in either coupling): the contact impulses go to the nearest control points
-  // (inverse-distance weights).
+  // Vegetation (in either coupling): its contact impulses go to the nearest control points (inverse-
+  // distance weights).
   const deform::BodyState& state = dc.body->state();
   if (dc.settings.visual_impulse_scale > 0) {
     constexpr std::size_t kNearest = 4;
-    const bool visual = !crush;
     for (const CarContact& c : contacts) {
-      const bool dents = (visual && crushable(world, c.other)) || vegetation(world, c.other);
-      if (!dents || c.impulse_N_s.squaredNorm() == 0) continue;
+      if (!vegetation(world, c.other) || c.impulse_N_s.squaredNorm() == 0) continue;
       std::vector<std::pair<double, uint32_t>> near;
       for (uint32_t p = 0; p < state.positions_m.size(); ++p)
         near.emplace_back((state.positions_m[p] - c.point_m).norm(), p);
@@ -228,6 +238,55 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.elastic_after_step_J;
 }
 
+const DeformableCar* Simulation::Impl::visualCar(EntityRef e) const {
+  if (e.kind != EntityRef::Kind::Car || e.index >= index_of.size() || index_of[e.index] < 0) return nullptr;
+  const DeformableCar& other = of(e.index);
+  return other.settings.coupling == Coupling::Visual ? &other : nullptr;
+}
+
+Eigen::Vector3d Simulation::Impl::onTheGround(const DeformableCar& dc,
+                                              const Eigen::Vector3d& impulse_Ns) const {
+  // The ghost stands on its wheels as the car does: the ground takes what would lift it or press it down
+  // (with that freedom two ghosts head-on drifted apart vertically, one car denting 8 % more).
+  const Eigen::Vector3d up =
+      world.car(dc.id).vehiclePose().orientation.conjugate() * Eigen::Vector3d::UnitZ();
+  return impulse_Ns - impulse_Ns.dot(up) * up;
+}
+
+void Simulation::Impl::advanceGhost(DeformableCar& dc) const {
+  // The velocity ODE's contacts with what the car crushes took from the chassis stays with the ghost.
+  if (dc.settings.coupling != Coupling::Visual) return;
+  Eigen::Vector3d taken_Ns{0, 0, 0};
+  for (const CarContact& c : world.carContacts(dc.id))
+    if (crushable(world, c.other)) taken_Ns += c.impulse_N_s;
+  dc.ghost_velocity_mps -= onTheGround(dc, taken_Ns) / world.car(dc.id).mass_kg();
+  dc.ghost_offset_m += dc.ghost_velocity_mps * world.fixedDt_s();  // where it is at the end of this step
+}
+
+void Simulation::Impl::updateGhost(DeformableCar& dc) const {
+  // The body's contact impulses slow the ghost as the crush coupling's slow the chassis: the whole car's
+  // momentum, which ODE's contact took from the chassis, goes into the dent.
+  const Eigen::Vector3d pushed_Ns = dc.report.contact_impulse_Ns;  // what it touches, and its partners
+  const Car& car = world.car(dc.id);
+  dc.ghost_velocity_mps += onTheGround(dc, pushed_Ns) / car.mass_kg();
+  if (pushed_Ns.squaredNorm() > 0) return;
+  // Nothing pushed the body this step: the ghost is not inside what it hit. Without ODE's contact either,
+  // the impact is over; with it (a car resting against a wall), the ghost does not draw back behind the
+  // chassis along the contact normal, so that the next push meets the obstacle where it stands.
+  if (dc.in_ode_contact == 0) {
+    dc.ghost_velocity_mps.setZero();
+    dc.ghost_offset_m.setZero();
+    return;
+  }
+  Eigen::Vector3d normal{0, 0, 0};  // out of what the car touches, into the car
+  for (const CarContact& c : world.carContacts(dc.id))
+    if (crushable(world, c.other)) normal += c.normal;
+  if (!(normal.norm() > 1e-12)) return;
+  normal.normalize();
+  dc.ghost_offset_m -= std::max(0.0, dc.ghost_offset_m.dot(normal)) * normal;
+  dc.ghost_velocity_mps -= std::max(0.0, dc.ghost_velocity_mps.dot(normal)) * normal;
+}
+
 void Simulation::Impl::solveCar(DeformableCar& dc) const {
   dc.report = dc.body->step(dc.inputs, world.fixedDt_s());
   if (!dc.report.asleep) dc.elastic_after_step_J = dc.body->carriedElasticEnergy_J();
@@ -243,10 +302,14 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   dc.damping_loss_J += report.damping_loss_J;
   dc.contact_work_J += report.contact_work_J;
   dc.inertial_work_J += report.inertial_work_J;
-  // The obstacles' work in the world: deform's is in the frame of the chassis as the step began.
-  const double obstacle_work_J = report.obstacle_work_J +
-                                 report.contact_impulse_Ns.dot(dc.frame_velocity_mps) +
-                                 report.contact_moment_Nms.dot(dc.frame_omega_radps);
+  // The obstacles' work in the world: deform's is in the frame of the chassis as the step began. Visual:
+  // the chassis's core is rigid (the body's impulses never reach it) and the obstacles move against the
+  // ghost, so deform's own figure is the work they did on the body, the energy the ghost brought to the
+  // dent; ODE's rigid contact took the same energy from the chassis (other work).
+  const double obstacle_work_J = crush ? report.obstacle_work_J +
+                                             report.contact_impulse_Ns.dot(dc.frame_velocity_mps) +
+                                             report.contact_moment_Nms.dot(dc.frame_omega_radps)
+                                       : report.obstacle_work_J;
   if (std::isfinite(obstacle_work_J)) dc.obstacle_work_J += obstacle_work_J;
   dc.contact_loss_J += report.contact_loss_J;
   dc.hit.assign(dc.touching.begin(), dc.touching.begin() + static_cast<std::ptrdiff_t>(dc.in_ode_contact));
@@ -285,6 +348,7 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
         world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
     }
   }
+  if (!crush && finite) updateGhost(dc);
   dc.previous_velocity_mps = car.velocity_mps();
   dc.previous_omega_radps = car.angularVelocity_rad_s();
 

@@ -67,6 +67,12 @@ struct DeformableCar {
   int quiet_steps = 0;                             ///< steps without a control point in contact
   Eigen::Vector3d previous_velocity_mps{0, 0, 0};  ///< chassis, after the body's reaction last step (world)
   Eigen::Vector3d previous_omega_radps{0, 0, 0};   ///< the same, angular (world)
+  /// Visual: the car as it would move without ODE's rigid contact with what it crushes (a "ghost"), relative
+  /// to the chassis, vehicle frame. ODE's contact impulses on the chassis go to it (their velocity change is
+  /// the ghost's), the body's contact impulses take them back, and what it hits is met where the ghost
+  /// would meet it: the dent the crush coupling gives for the same impact, the chassis's motion left to
+  /// ODE (visualGhost, crush_coupling.cpp) [m/s], [m].
+  Eigen::Vector3d ghost_velocity_mps{0, 0, 0}, ghost_offset_m{0, 0, 0};
   /// Crush: (I_chassis + I_shell)^-1 I_chassis (chassis axes) [-]; its transpose is the chassis's share of
   /// a moment the body hands the core (finishCar), the shell turning with it taking the rest.
   Eigen::Matrix3d chassis_share_of_rotation = Eigen::Matrix3d::Identity();
@@ -129,6 +135,8 @@ struct Simulation::Impl {
   /// (addApproaching) [m/s], [rad/s], [m].
   BoxGrid car_grid;
   double fastest_car_mps = 0, fastest_turn_radps = 0, largest_half_diagonal_m = 0;
+  /// The largest reach of a visual car's ghost this step, |offset| + |velocity| dt (advanceGhost) [m].
+  double largest_ghost_m = 0;
   void updateBoxes();
   /// Per car (index into cars): nothing near it this step (simulation_step.cpp's broad phase: boxes of
   /// the control points and obstacles grown by the step's travel; any contact but the ground's counts).
@@ -217,7 +225,15 @@ struct Simulation::Impl {
                      const Eigen::Vector3d& omega_before) const;
   void solveCar(DeformableCar& dc) const;
   void finishCar(DeformableCar& dc);
-  /// Whether `other` is a deformable car stepped with `dc` as one group (both in the crush coupling).
+  /// Visual: the ghost over ODE's step, before any car is prepared (DeformableCar::ghost_velocity_mps),
+  /// and after the body's step.
+  void advanceGhost(DeformableCar& dc) const;
+  /// `impulse_Ns` (vehicle frame) less its vertical part, which the ground takes from a ghost.
+  Eigen::Vector3d onTheGround(const DeformableCar& dc, const Eigen::Vector3d& impulse_Ns) const;
+  void updateGhost(DeformableCar& dc) const;
+  /// The deformable car `e` is, when it is one in the visual coupling; else null.
+  const DeformableCar* visualCar(EntityRef e) const;
+  /// Whether `other` is a deformable car stepped with `dc` as one group (both in the same coupling).
   bool pairsWith(const DeformableCar& dc, EntityRef other) const;
   /// Steps the bodies of `group` (indices into cars, prepared) as one: deform::stepGroup with a link for
   /// every pair of partners among them (car_group.cpp).

@@ -72,6 +72,8 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
   out.u64(static_cast<uint64_t>(dc.quiet_steps));
   out.vec(dc.previous_velocity_mps);
   out.vec(dc.previous_omega_radps);
+  out.vec(dc.ghost_velocity_mps);
+  out.vec(dc.ghost_offset_m);
   const CrashMetrics& metrics = dc.metrics;
   visitMetrics(out, metrics);
   out.vec(dc.impact_normal);
@@ -107,6 +109,8 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
   dc.quiet_steps = static_cast<int>(quiet);
   dc.previous_velocity_mps = in.vec();
   dc.previous_omega_radps = in.vec();
+  dc.ghost_velocity_mps = in.vec();
+  dc.ghost_offset_m = in.vec();
   visitMetrics(in, dc.metrics);
   dc.impact_normal = in.vec();
   dc.impact_direction_vehicle = in.vec();

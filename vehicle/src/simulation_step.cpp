@@ -148,7 +148,13 @@ void Simulation::step() {
   timings.collide_ms = world.collide_ms;
   timings.solve_ms = world.solve_ms;
   t = Clock::now();
-  for (auto& dc : m.cars) dc->world_shape = m.snapshotShape(*dc);
+  m.largest_ghost_m = 0;
+  for (auto& dc : m.cars) {
+    dc->world_shape = m.snapshotShape(*dc);
+    m.advanceGhost(*dc);  // before any car reads another's
+    m.largest_ghost_m = std::max(
+        m.largest_ghost_m, dc->ghost_offset_m.norm() + dc->ghost_velocity_mps.norm() * m.world.fixedDt_s());
+  }
   m.car_motion.resize(m.world.carCount());
   for (CarId c = 0; c < m.world.carCount(); ++c) m.refreshMotion(c);
   m.updateBoxes();

@@ -13,8 +13,10 @@
 //    the body's spokes carry into the core (the crumple's resistance), so the kinetic energy goes into
 //    plastic work. The collision hull is rebuilt from the dented body once the contact has ended (never
 //    from the instantaneous points during it: that would cancel the decelerating force, DESIGN.md sec. 5).
-//  - Visual (Kenwright 2015): ODE's rigid contacts stop the car as an undamaged one; the dent comes from
-//    the contact impulses, handed to the nearest control points. The motion is not changed by the damage.
+//  - Visual (Kenwright 2015): ODE's rigid contacts stop the car as an undamaged one, and the motion is
+//    not changed by the damage. The body meets what the car hits where the car would be without those
+//    contacts (its ghost: the velocity they took from the chassis, slowed by the body's push), so the
+//    dent is the crush coupling's for the same impact.
 //
 // Contract names (the scene runner's): WorldSettings, CarId, CarStart, VehicleSettings are world.hpp's
 // and vehicle_settings.hpp's types of those names.
@@ -37,7 +39,7 @@ namespace vehicle {
 
 enum class Coupling : uint8_t {
   Crush,   ///< the crumple absorbs the kinetic energy (default)
-  Visual,  ///< the paper: motion unaffected by damage, dent from the contact impulse
+  Visual,  ///< the paper: motion unaffected by damage; the body dented by the car's ghost (no rigid contact)
 };
 
 /// Per-car deformation settings (scene keys vehicle.deformation.*). The material is given in physical
@@ -91,8 +93,9 @@ struct DeformationSettings {
   /// Visual coupling only: scale of the chassis's inertial (fictitious) forces on the control points [-]
   /// (crush always uses 1, the shell's real inertia).
   double inertial_scale = 0.0;
-  /// Visual: share of each contact impulse of ODE's rigid contact handed to the control points [-] (the
-  /// paper's coupling; not yet given a physical meaning, see docs/CRASH_CALIBRATION.md).
+  /// Vegetation (either coupling): share of each contact impulse of ODE's rigid contact with a plant
+  /// handed to the 4 nearest control points [-] (no physical meaning yet; the visual coupling's dent
+  /// comes from its ghost, docs/CRASH_CALIBRATION.md, "Visual coupling: the ghost").
   double visual_impulse_scale = 0.05;
   Coupling coupling = Coupling::Crush;
   /// Force-limited constraints (deform::SolverParams::yield_limited): no constraint carries more than its
