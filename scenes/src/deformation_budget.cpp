@@ -1,6 +1,8 @@
 // Levels of detail with their measured cost, and the deformation budget (deformation_budget.hpp).
 #include <scenes/deformation_budget.hpp>
 
+#include "scene_world.hpp"
+
 #include <deform/solver_params.hpp>
 
 #include <algorithm>
@@ -9,100 +11,6 @@
 
 namespace scenes {
 namespace {
-
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
-// A car's footprint in the plan: a capsule along its heading (the built-in sedan's 4.8 m x 1.9 m).
-constexpr double kCarHalfAxis_m = 1.45, kCarHalfWidth_m = 0.95;
-constexpr double kSample_s = 0.05;  ///< the plan looks ahead in steps of this [s]
-
-Eigen::Vector2d startVelocity(const VehicleConfig& v) {
-  const double heading = v.start.heading_deg * kDegree;
-  const Eigen::Vector2d forward(std::cos(heading), std::sin(heading)), left(-forward.y(), forward.x());
-  return (v.start.speed_kmh * forward + v.start.lateral_speed_kmh * left) / 3.6;
-}
-
-Eigen::Vector2d halfAxis(const VehicleConfig& v) {
-  const double heading = v.start.heading_deg * kDegree;
-  return kCarHalfAxis_m * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-}
-
-/// Distance from `p` to the segment `c` +- `h` [m].
-double toSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& c, const Eigen::Vector2d& h) {
-  const double t = h.squaredNorm() > 0 ? std::clamp((p - c).dot(h) / h.squaredNorm(), -1.0, 1.0) : 0.0;
-  return (p - c - t * h).norm();
-}
-
-/// Distance between the segments `c1` +- `h1` and `c2` +- `h2` [m] (2D: if they do not cross, the
-/// closest pair has an end point in it).
-double betweenSegments(const Eigen::Vector2d& c1, const Eigen::Vector2d& h1, const Eigen::Vector2d& c2,
-                       const Eigen::Vector2d& h2) {
-  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-  };
-  const double denominator = cross(2 * h1, 2 * h2);
-  if (std::abs(denominator) > 1e-12) {
-    const Eigen::Vector2d d = (c2 - h2) - (c1 - h1);
-    const double s = cross(d, 2 * h2) / denominator, t = cross(d, 2 * h1) / denominator;
-    if (s >= 0 && s <= 1 && t >= 0 && t <= 1) return 0;
-  }
-  return std::min({toSegment(c1 + h1, c2, h2), toSegment(c1 - h1, c2, h2), toSegment(c2 + h2, c1, h1),
-                   toSegment(c2 - h2, c1, h1)});
-}
-
-/// Distance from `p` to an obstacle's footprint in the ground plane [m]: a disc for a post or a tree, a
-/// rectangle for a wall, box or ramp, a 1 m disc for a mesh.
-double toObstacle(const ObstacleConfig& o, const Eigen::Vector2d& p) {
-  const Eigen::Vector2d centre = o.position_m.head<2>();
-  if (o.type == ObstacleType::Post || o.type == ObstacleType::Vegetation)
-    return std::max(0.0, (p - centre).norm() - o.radius_m);
-  if (o.type == ObstacleType::Mesh) return std::max(0.0, (p - centre).norm() - 1.0);
-  const Eigen::Vector2d half = o.type == ObstacleType::Ramp
-                                   ? Eigen::Vector2d(0.5 * o.length_m, 0.5 * o.width_m)
-                                   : Eigen::Vector2d(0.5 * o.size_m.x(), 0.5 * o.size_m.y());
-  const double yaw = o.yaw_deg * kDegree;
-  const Eigen::Vector2d axis(std::cos(yaw), std::sin(yaw)), across(-axis.y(), axis.x());
-  const Eigen::Vector2d local((p - centre).dot(axis), (p - centre).dot(across));
-  const Eigen::Vector2d outside = (local.cwiseAbs() - half).cwiseMax(0.0);
-  return outside.norm();
-}
-
-/// When car `i`, moving on straight at its start velocity, first comes within touch of something, and
-/// what; looked ahead over `horizon_s` in kSample_s steps (infinity and Nothing when it never does).
-std::pair<double, Meets> firstContact(const SceneConfig& scene, std::size_t i, double horizon_s) {
-  const VehicleConfig& v = scene.vehicles[i];
-  const Eigen::Vector2d p = v.start.position_m.head<2>(), u = startVelocity(v), h = halfAxis(v);
-  std::pair<double, Meets> first{std::numeric_limits<double>::infinity(), Meets::Nothing};
-  for (std::size_t j = 0; j < scene.vehicles.size(); ++j) {
-    if (j == i) continue;
-    const VehicleConfig& w = scene.vehicles[j];
-    const Eigen::Vector2d q = w.start.position_m.head<2>(), r = startVelocity(w), g = halfAxis(w);
-    const double closing = (r - u).norm();
-    // Apart by more than the gap can close over the horizon: never.
-    if ((q - p).norm() - 2 * (kCarHalfAxis_m + kCarHalfWidth_m) > closing * horizon_s) continue;
-    for (double t = 0; t <= std::min(horizon_s, first.first); t += kSample_s) {
-      if (betweenSegments(p + t * u, h, q + t * r, g) < 2 * kCarHalfWidth_m) {
-        if (t < first.first) first = {t, Meets::Car};
-        break;
-      }
-      if (closing == 0) break;  // the gap never changes
-    }
-  }
-  for (const ObstacleConfig& o : scene.obstacles) {
-    // Further from the obstacle than the car can travel over the horizon: never.
-    if (toObstacle(o, p) - kCarHalfAxis_m - kCarHalfWidth_m > u.norm() * horizon_s) continue;
-    for (double t = 0; t <= std::min(horizon_s, first.first); t += kSample_s) {
-      const Eigen::Vector2d c = p + t * u;
-      const double d = std::min({toObstacle(o, c), toObstacle(o, c + h), toObstacle(o, c - h),
-                                 toObstacle(o, c + 0.5 * h), toObstacle(o, c - 0.5 * h)});
-      if (d < kCarHalfWidth_m) {
-        if (t < first.first) first = {t, Meets::Obstacle};
-        break;
-      }
-      if (u.norm() == 0) break;
-    }
-  }
-  return first;
-}
 
 double cameraDistance(const SceneConfig& scene, std::size_t car) {
   const CameraConfig& camera = scene.camera;
@@ -164,18 +72,21 @@ double contactCostScale(const DeformationLevel& level, const vehicle::Deformatio
   return static_cast<double>(taken) / static_cast<double>(substeps);
 }
 
-BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps) {
+BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps,
+                                 const std::vector<std::shared_ptr<const deform::VehicleModel>>* models) {
   const std::vector<DeformationLevel>& levels = deformationLevels();
   const std::size_t n = scene.vehicles.size();
   const double steps = std::max(internal_steps, 1);
   BudgetPlan plan;
   plan.budget_ms = budget_ms;
   plan.cars.resize(n);
+  const std::vector<FirstContact> first =
+      rehearseFirstContacts(scene, models ? *models : build::loadModels(scene), std::max(internal_steps, 1),
+                            std::min(scene.duration_s, kRehearsal_s));
   for (std::size_t i = 0; i < n; ++i) {
     BudgetChoice& choice = plan.cars[i];
-    const auto [t, meets] = firstContact(scene, i, std::min(scene.duration_s, 30.0));
-    choice.first_contact_s = t;
-    choice.meets = meets;
+    choice.first_contact_s = first[i].time_s;
+    choice.meets = first[i].meets;
     choice.camera_distance_m = cameraDistance(scene, i);
   }
   std::vector<std::size_t> order(n);

@@ -1,6 +1,7 @@
 // Playing a scene: world and cars from the scene, drive scripts, metrics, timeline.
 #include <scenes/scene_run.hpp>
 #include <vehicle/ccd_support.hpp>
+#include "scene_world.hpp"
 
 #include <deform/error.hpp>
 #include <deform/mesh_import.hpp>
@@ -20,13 +21,10 @@
 namespace scenes {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
+using build::vehicleKey;
+using build::withSource;
 
-// The scene file's name for vehicle `index` (its key path), for messages.
-std::string vehicleKey(const SceneConfig& scene, std::size_t index) {
-  return scene.vehicles.size() == 1 && index == 0 ? std::string("vehicle")
-                                                  : "vehicles[" + std::to_string(index) + "]";
-}
+constexpr double kDegree = std::numbers::pi / 180.0;
 
 // A body denser than any solid is a wrong mass or a mesh in the wrong units (millimetres read as metres):
 // its points would be flung metres from a body centimetres wide (a drinks can of 1500 kg, 4e6 kg/m^3,
@@ -43,51 +41,6 @@ void refuseDenserThanAnySolid(const VehicleConfig& v, const deform::VehicleModel
       where + ".mass_kg: the bounding box of " + v.mesh + figures +
       " more than any solid (osmium: 22,590 kg/m^3): check the mass, or the mesh's units "
       "(mesh_scale)");
-}
-
-// Re-throws an InputError from the vehicle or mesh side with the scene file and key path in front.
-template <typename F>
-auto withSource(const std::string& where, F&& f) {
-  try {
-    return f();
-  } catch (const deform::InputError& e) {
-    throw deform::InputError(where + ": " + e.what());
-  }
-}
-
-deform::ImportOptions importOptions(double scale, const std::optional<std::string>& up,
-                                    const std::optional<std::string>& forward) {
-  deform::ImportOptions options;
-  options.scale = scale;
-  if (up) options.up = deform::parseAxis(*up, "mesh_up");
-  if (forward) options.forward = deform::parseAxis(*forward, "mesh_forward");
-  return options;
-}
-
-vehicle::ObstacleId addObstacle(vehicle::World& world, const ObstacleConfig& o, const std::string& where) {
-  const vehicle::Pose pose = vehicle::Pose::yawed(o.position_m, o.yaw_deg * kDegree);
-  switch (o.type) {
-    case ObstacleType::Wall:
-      return world.addWall(pose, o.size_m, o.friction);
-    case ObstacleType::Box:
-      if (o.mass_kg <= 0) return world.addWall(pose, o.size_m, o.friction);
-      return world.addConvexMesh(deform::makeBox(o.size_m, 100), pose, o.mass_kg, o.friction);
-    case ObstacleType::Post:
-      return world.addPost(o.position_m, o.radius_m, o.height_m,
-                           o.capsule ? vehicle::PostShape::Capsule : vehicle::PostShape::Cylinder,
-                           o.friction);
-    case ObstacleType::Vegetation:
-      return world.addVegetation(o.position_m, o.radius_m, o.height_m, o.mass_kg, o.friction);
-    case ObstacleType::Ramp:
-      return world.addRamp(pose, o.length_m, o.width_m, o.height_m, o.friction);
-    case ObstacleType::Mesh: {
-      const deform::VehicleModel mesh = withSource(where + ".mesh", [&] {
-        return deform::loadVehicleModel(o.mesh, importOptions(o.mesh_scale, {}, {}));
-      });
-      return world.addConvexMesh(mesh.body, pose, o.mass_kg, o.friction);
-    }
-  }
-  return 0;
 }
 
 }  // namespace
@@ -132,65 +85,33 @@ std::string timelineCsv(const std::vector<std::string>& columns,
 
 SceneRun::SceneRun(SceneConfig scene) : scene_(std::move(scene)) {
   const auto started = std::chrono::steady_clock::now();
-  vehicle::WorldSettings world_settings;
   physics_substeps_ = static_cast<int>(std::ceil(kMinInternalRate_hz / scene_.physics_hz - 1e-9));
   physics_substeps_ = std::max(physics_substeps_, 1);
-  world_settings.physics_rate_hz = scene_.physics_hz * physics_substeps_;
-  world_settings.gravity_mps2 = {0, 0, -scene_.gravity_mps2};
-  world_settings.ground = scene_.ground;
-  world_settings.ground_friction = scene_.ground_friction;
+  const vehicle::WorldSettings world_settings = build::worldSettings(scene_, physics_substeps_);
   simulation_ =
       withSource(scene_.source, [&] { return std::make_unique<vehicle::Simulation>(world_settings); });
   total_steps_ = static_cast<uint64_t>(std::llround(scene_.duration_s * scene_.physics_hz));
   simulation_->setThreads(scene_.threads.value_or(defaultThreads()));
+  const std::vector<std::shared_ptr<const deform::VehicleModel>> models = build::loadModels(scene_);
+  for (std::size_t i = 0; i < scene_.vehicles.size(); ++i)
+    refuseDenserThanAnySolid(scene_.vehicles[i], *models[i], scene_.source + ": " + vehicleKey(scene_, i));
   if (scene_.deformation_budget_ms) {
-    budget_plan_ = planDeformationBudget(scene_, *scene_.deformation_budget_ms, physics_substeps_);
+    budget_plan_ = planDeformationBudget(scene_, *scene_.deformation_budget_ms, physics_substeps_, &models);
     applyBudget(*budget_plan_, scene_);
   }
-
-  std::map<std::string, std::shared_ptr<const deform::VehicleModel>> models;
   for (std::size_t i = 0; i < scene_.vehicles.size(); ++i) {
     const VehicleConfig& v = scene_.vehicles[i];
     const std::string where = scene_.source + ": " + vehicleKey(scene_, i);
-    // Cars with the same mesh spec share one loaded model (DESIGN.md section 8).
-    char scale[40];
-    std::snprintf(scale, sizeof scale, "%a", v.mesh_scale);  // exact
-    const std::string mesh_key =
-        v.mesh + "\n" + scale + "\n" + v.mesh_up.value_or("") + "\n" + v.mesh_forward.value_or("");
-    std::shared_ptr<const deform::VehicleModel>& shared = models[mesh_key];
-    if (!shared) {
-      shared = withSource(where + ".mesh", [&] {
-        return std::make_shared<const deform::VehicleModel>(
-            deform::loadVehicleModel(v.mesh, importOptions(v.mesh_scale, v.mesh_up, v.mesh_forward)));
-      });
-    }
-    const deform::VehicleModel& model = *shared;
-    refuseDenserThanAnySolid(v, model, where);
-    vehicle::VehicleSettings base;
-    base.wheels = vehicle::wheelsFromModel(base, model);
-    if (v.wheels_in_body && model.wheels.empty()) {
-      // Modelled wheels are part of the body: tyres touching down at the mesh's bottom (plus 1 %).
-      const deform::Aabb box = deform::boundingBox(model.body);
-      for (vehicle::WheelSettings& w : base.wheels) {
-        w.centre_m.z() = box.min_m.z() + w.radius_m + 0.01 * box.size_m().z();
-      }
-    }
-    const vehicle::VehicleSettings settings =
-        withSource(where + ".mass_kg", [&] { return vehicle::settingsForMass(base, v.mass_kg); });
-    vehicle::CarStart start;
-    start.position_m = v.start.position_m;
-    start.heading_rad = v.start.heading_deg * kDegree;
-    start.speed_mps = v.start.speed_kmh / 3.6;
-    start.on_ground = v.start.on_ground;
+    const vehicle::VehicleSettings settings = build::carSettings(v, *models[i], where);
     const vehicle::CarId id = withSource(where + ".deformation", [&] {
-      return simulation_->addDeformableCar(model, settings, start, v.deformation.settings);
+      return simulation_->addDeformableCar(*models[i], settings, build::carStart(v), v.deformation.settings);
     });
-    cars_.push_back(Car{id, shared, DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6, std::nullopt});
+    cars_.push_back(Car{id, models[i], DrivePlayer(v.drive), v.start.lateral_speed_kmh / 3.6, std::nullopt});
   }
   for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
     const std::string where = scene_.source + ": obstacles[" + std::to_string(i) + "]";
-    obstacle_ids_.push_back(
-        withSource(where, [&] { return addObstacle(simulation_->world(), scene_.obstacles[i], where); }));
+    obstacle_ids_.push_back(withSource(
+        where, [&] { return build::addObstacle(simulation_->world(), scene_.obstacles[i], where); }));
   }
   refuseStartingOverlaps();
   times_.setup_ms +=
@@ -246,16 +167,11 @@ void SceneRun::internalStep() {
   // The drive inputs count as tyres (they are what the wheels are told).
   const auto inputs_start = std::chrono::steady_clock::now();
   for (Car& car : cars_) {
-    vehicle::Car& chassis = world.car(car.id);
-    chassis.setInput(car.override_input ? *car.override_input
-                                        : car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt));
-    if (world.stepCount() == 0 && car.lateral_speed_mps != 0) {
-      // A sideways start (a car sliding into a pole): one step's push of m dv / dt at the centre of mass.
-      const vehicle::Pose body = chassis.bodyPose();
-      const Eigen::Vector3d left = body.orientation * Eigen::Vector3d::UnitY();
-      world.addForce({vehicle::EntityRef::Kind::Car, car.id},
-                     chassis.mass_kg() * car.lateral_speed_mps / dt * left, body.position_m);
-    }
+    const vehicle::Car& chassis = world.car(car.id);
+    build::driveCar(world, car.id,
+                    car.override_input ? *car.override_input
+                                       : car.driver.inputs(world.time_s(), chassis.forwardSpeed_mps(), dt),
+                    car.lateral_speed_mps);
   }
   times_.tyres_ms +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - inputs_start).count();

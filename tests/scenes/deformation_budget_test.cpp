@@ -1,6 +1,6 @@
 // The deformation budget (scene key deformation_budget_ms): more cars get coarser levels, the chosen
-// levels fit the budget, the cars that crash first and those near the camera are served first, an
-// impossible budget says so, and a negative one is refused naming the key.
+// levels fit the budget, the cars that crash first (along their drive scripts) and those near the camera
+// are served first, an impossible budget says so, and a negative one is refused naming the key.
 #include <catch2/catch.hpp>
 
 #include <scenes/deformation_budget.hpp>
@@ -188,4 +188,38 @@ TEST_CASE("Budget: a fine car against an obstacle is charged the substeps the co
   REQUIRE(at500.cars[0].level == "finest");
   REQUIRE(at120.cars[0].level == "finest");
   CHECK(at120.cars[0].estimated_ms == Approx(at500.cars[0].estimated_ms * std::ceil(500.0 / 120.0 * 4) / 4));
+}
+
+TEST_CASE("Budget: who meets what is found along the drive scripts, not on straight lines",
+          "[scenes][budget]") {
+  // Three cars at 30 km/h, 20 m apart across: the first brakes hard before the wall ahead of it; the
+  // second turns left into a post 9 m off its straight line; the third drives on past the wall's end.
+  json scene = {{"duration_s", 4.0}, {"physics_hz", 120}, {"vehicles", json::array()}};
+  const json drives[3] = {
+      {{"keys", {{{"t_s", 0}, {"brake", 1}}}}},
+      {{"keys", {{{"t_s", 0}, {"target_speed_kmh", 30}}, {{"t_s", 0.5}, {"steering", 0.6}}}}},
+      {{"keys", {{{"t_s", 0}, {"target_speed_kmh", 30}}}}}};
+  for (int i = 0; i < 3; ++i)
+    scene["vehicles"].push_back({{"mesh", "builtin:sedan?vertices=2000"},
+                                 {"mass_kg", 1500},
+                                 {"coupling", "crush"},
+                                 {"start", {{"position_m", {0.0, -20.0 * i}}, {"speed_kmh", 30}}},
+                                 {"drive", drives[i]}});
+  scene["obstacles"] = {{{"type", "wall"}, {"position_m", {14, 0}}, {"size_m", {0.5, 4, 1.5}}},
+                        {{"type", "post"}, {"position_m", {9.5, -11}}, {"radius_m", 0.3}, {"height_m", 1}}};
+  const scenes::SceneConfig config = scenes::parseScene(scene, "routes.json");
+  const std::vector<scenes::FirstContact> first =
+      scenes::rehearseFirstContacts(config, scenes::loadVehicleModels(config), 1, config.duration_s);
+  REQUIRE(first.size() == 3);
+  CHECK(first[0].meets == scenes::Meets::Nothing);  // stopped in 4.5 m, the wall 11.6 m ahead
+  CHECK(first[1].meets == scenes::Meets::Obstacle);
+  CHECK(first[1].time_s > 0.5);
+  CHECK(first[1].time_s < 3.0);
+  CHECK(first[2].meets == scenes::Meets::Nothing);
+  CHECK_FALSE(std::isfinite(first[2].time_s));
+  // The plan takes them from there: the turning car comes first.
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(config, 1.0);
+  CHECK(plan.cars[1].meets == scenes::Meets::Obstacle);
+  CHECK(plan.cars[1].first_contact_s == first[1].time_s);
+  CHECK(plan.cars[1].priority == 0);
 }

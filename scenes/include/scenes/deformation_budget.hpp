@@ -4,7 +4,10 @@
 // only as finely as the budget allows, the cars the script crashes first and those near the camera first.
 #include <scenes/scene.hpp>
 
+#include <deform/mesh.hpp>
+
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,9 +54,9 @@ struct BudgetChoice {
   std::string level;
   double estimated_ms = 0;  ///< the level's cost per physics step, for what the car meets [ms]
   Meets meets = Meets::Nothing;
-  /// When the car would first touch another car or an obstacle, every car moving straight on at its start
-  /// velocity (a capsule of the sedan's size), looked ahead over the scene's duration up to 30 s [s];
-  /// infinity when it would not.
+  /// When the car first touches another car or an obstacle (not the ground or a ramp) in the scene played
+  /// once with rigid cars along their drive scripts (rehearseFirstContacts), over the scene's duration up
+  /// to kRehearsal_s [s]; infinity when it does not.
   double first_contact_s = std::numeric_limits<double>::infinity();
   double camera_distance_m = 0;  ///< from the camera's eye (0 for the car a chase camera follows) [m]
   std::size_t priority = 0;      ///< 0 is served first
@@ -67,13 +70,37 @@ struct BudgetPlan {
   std::vector<BudgetChoice> cars;  ///< in the scene's order
 };
 
+/// How far ahead the budget's rehearsal looks [s].
+inline constexpr double kRehearsal_s = 30.0;
+
+/// When each car first touches something it can crash into, and what.
+struct FirstContact {
+  double time_s = std::numeric_limits<double>::infinity();  ///< infinity: never within the horizon [s]
+  Meets meets = Meets::Nothing;
+};
+
+/// Every vehicle's model, in order (vehicles with the same mesh spec share one).
+std::vector<std::shared_ptr<const deform::VehicleModel>> loadVehicleModels(const SceneConfig& scene);
+
+/// The scene played with rigid cars (ODE's chassis and hull, no deformable body) along their drive
+/// scripts, `internal_steps` world steps per physics step, up to `horizon_s` or until every car has met
+/// something: each car's first contact with another car (Car) or an obstacle (Obstacle; the ground and
+/// ramps do not count). `models`: each vehicle's model, in order. Until its first contact a car moves as
+/// it does in the run itself, so a turn, a lane change or a braking in the script is followed.
+std::vector<FirstContact> rehearseFirstContacts(
+    const SceneConfig& scene, const std::vector<std::shared_ptr<const deform::VehicleModel>>& models,
+    int internal_steps, double horizon_s);
+
 /// Chooses a level per car so that their cost per physics step (`internal_steps` world steps each),
-/// every body awake and each car charged for what it would meet first (moving straight on at its start
-/// velocity: another car, an obstacle, or nothing), stays within `budget_ms`. Every car starts at the
-/// coarsest level; then, round after round in priority order (the car the scene's start would crash first,
-/// then the one nearest the camera), each goes one level finer while the budget has room. When even the
-/// coarsest levels exceed it, every car keeps the coarsest and `met` is false.
-BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int internal_steps = 1);
+/// every body awake and each car charged for what it meets first in the rehearsal (rehearseFirstContacts,
+/// over the scene's duration up to kRehearsal_s: another car, an obstacle, or nothing), stays within
+/// `budget_ms`. Every car starts at the coarsest level; then, round after round in priority order (the car
+/// that crashes first, then the one nearest the camera), each goes one level finer while the budget has
+/// room. When even the coarsest levels exceed it, every car keeps the coarsest and `met` is false.
+/// `models`: the vehicles' models when already loaded (else they are loaded here).
+BudgetPlan planDeformationBudget(
+    const SceneConfig& scene, double budget_ms, int internal_steps = 1,
+    const std::vector<std::shared_ptr<const deform::VehicleModel>>* models = nullptr);
 
 /// Sets every car's chosen level on `scene`.
 void applyBudget(const BudgetPlan& plan, SceneConfig& scene);
