@@ -270,17 +270,22 @@ void Simulation::Impl::updateGhost(DeformableCar& dc) const {
   const Car& car = world.car(dc.id);
   dc.ghost_velocity_mps += onTheGround(dc, pushed_Ns) / car.mass_kg();
   if (pushed_Ns.squaredNorm() > 0) return;
-  // Nothing pushed the body this step: the ghost is not inside what it hit. Without ODE's contact either,
-  // the impact is over; with it (a car resting against a wall), the ghost does not draw back behind the
-  // chassis along the contact normal, so that the next push meets the obstacle where it stands.
-  if (dc.in_ode_contact == 0) {
+  // Nothing pushed the body this step: the ghost is not inside what it hit. Without ODE's contact either
+  // (with an obstacle or another car), the impact is over; with it (a car resting against a wall), the
+  // ghost does not draw back behind the chassis along the contact normal, so that the next push meets the
+  // obstacle where it stands.
+  bool in_ode_contact = false;
+  Eigen::Vector3d normal{0, 0, 0};  // out of what the car touches, into the car
+  for (const CarContact& c : world.carContacts(dc.id))
+    if (crushable(world, c.other)) {
+      in_ode_contact = true;
+      normal += c.normal;
+    }
+  if (!in_ode_contact) {
     dc.ghost_velocity_mps.setZero();
     dc.ghost_offset_m.setZero();
     return;
   }
-  Eigen::Vector3d normal{0, 0, 0};  // out of what the car touches, into the car
-  for (const CarContact& c : world.carContacts(dc.id))
-    if (crushable(world, c.other)) normal += c.normal;
   if (!(normal.norm() > 1e-12)) return;
   normal.normalize();
   dc.ghost_offset_m -= std::max(0.0, dc.ghost_offset_m.dot(normal)) * normal;
