@@ -18,6 +18,10 @@ const char* skinMethodName(SkinMethod method) {
   return method == SkinMethod::mls ? "mls" : "idw";
 }
 
+SkinMethod preferredSkinMethod(std::size_t control_points) {
+  return control_points <= kMlsUpToControlPoints ? SkinMethod::mls : SkinMethod::idw;
+}
+
 bool parseSkinMethod(const std::string& name, SkinMethod& method) {
   if (name == "idw")
     method = SkinMethod::idw;
@@ -63,14 +67,23 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
     std::vector<uint32_t> chosen(K);
     for (std::size_t j = begin; j < end; ++j) {
       const Eigen::Vector3d v = vertices_m[j].cast<double>();
+      // mls: the (K+1)-th nearest too, at whose distance the fit's weights fall to zero (continuity).
+      const std::size_t asked = options.method == SkinMethod::mls && K < n ? K + 1 : K;
       if (use_tree) {
-        tree->nearest(v, K, ranked);
+        tree->nearest(v, asked, ranked);
       } else {
         ranked.clear();
         for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
-        if (K < n)
-          std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(K - 1), ranked.end());
-        ranked.resize(K);
+        if (asked < n)
+          std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
+                           ranked.end());
+        ranked.resize(asked);
+        std::sort(ranked.begin(), ranked.end());
+      }
+      double cutoff_m = 0;
+      if (asked > K) {
+        cutoff_m = std::sqrt(ranked.back().distance2_m2);
+        ranked.pop_back();
       }
       // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
       // among the nearest few dozen, then (a large flat side of the hull) among all.
@@ -103,7 +116,7 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
           return true;
         }
         return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
-                                                 weight.data());
+                                                 weight.data(), cutoff_m);
       };
       // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
       // not exact for affine maps: widen the points across their plane by their own extent and fit again.

@@ -21,11 +21,27 @@ void inverseDistanceWeights(const double* distance_m, std::size_t count, double 
 }
 
 bool movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
-                               const double* distance_m, std::size_t count, double alpha, double* weight) {
+                               const double* distance_m, std::size_t count, double alpha, double* weight,
+                               double cutoff_m) {
   // theta_k: the inverse-distance weights, normalised (sum 1). On a control point they are already the
   // interpolant (that point alone), and the affine fit below adds nothing.
   inverseDistanceWeights(distance_m, count, alpha, weight);
   if (*std::min_element(distance_m, distance_m + count) == 0) return true;
+  if (cutoff_m > 0) {
+    // Less the weight the next point out would have (at cutoff_m), so that a point's weight falls to zero
+    // as it leaves the K nearest: the fit, and so the deformed surface, is continuous where the set of
+    // nearest points changes. Without it the fit jumped there and left creases on a dented 200k-vertex
+    // bumper (docs/TRADEOFF.md). A point swapped in from further (widenSpan) keeps its own weight.
+    const double d_min = *std::min_element(distance_m, distance_m + count);
+    const double beyond = std::pow(d_min / cutoff_m, alpha);
+    double sum = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double phi = std::pow(d_min / distance_m[k], alpha);
+      weight[k] = distance_m[k] < cutoff_m ? phi - beyond : phi;
+      sum += weight[k];
+    }
+    for (std::size_t k = 0; k < count; ++k) weight[k] /= sum;
+  }
 
   // Schaefer, McPhail & Warren 2006, equations (4)-(5), affine map, written for weights: with
   //   p* = sum_k theta_k p_k,  p^_k = p_k - p*,  M = sum_k theta_k p^_k p^_k^T,

@@ -16,13 +16,16 @@ void inverseDistanceWeights(const double* distance_m, std::size_t count, double 
 
 /// Affine moving-least-squares weights (Schaefer, McPhail & Warren 2006, section 2.1) of vertex `v_m` over
 /// the control points `point_m[0 .. count)` at distances `distance_m`, with the inverse-distance weights
-/// as the least-squares weight: sum_k w_k = 1 and sum_k w_k p_k = v in every direction the points span.
-/// Directions the points do not span (coplanar, collinear, fewer than four points) are dropped from the
+/// as the least-squares weight (less the one a point at `cutoff_m` would have, for the points nearer
+/// than it, when cutoff_m > 0: the next nearest point's distance, so that the weights are continuous where
+/// the set of nearest points changes): sum_k w_k = 1 and sum_k w_k p_k = v in every direction the points
+/// span. Directions the points do not span (coplanar, collinear, fewer than four points) are dropped from the
 /// fit: the weights there are those of the weighted centroid. Finite for any input; a vertex on a control
 /// point takes that point alone. Returns false when the fit had to be bounded (sum |w| capped, a vertex
 /// far outside nearly flat points): the weights are then not exact for affine maps.
 bool movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d* point_m,
-                               const double* distance_m, std::size_t count, double alpha, double* weight);
+                               const double* distance_m, std::size_t count, double alpha, double* weight,
+                               double cutoff_m = 0);
 
 /// Whether vertex `v_m` lies off the plane (or line) of the `chosen` control points by more than three
 /// of their standard deviations across it: the affine fit over them then cannot reach it (the points of

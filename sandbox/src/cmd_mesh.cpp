@@ -20,7 +20,7 @@ struct MeshInfoFlags {
   std::string lod = "even";
   double alpha = 3.5;
   std::size_t k = 8;
-  std::string skin_method = "idw";
+  std::string skin_method = "auto";
   double mass_kg = 1500;
   unsigned threads = 0;
   bool json = false;
@@ -36,9 +36,9 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   options.control_points = flags.control_points;
   options.lod = deform::parseLodMethod(flags.lod, "--lod");
   options.vehicle_mass_kg = flags.mass_kg;
-  options.skin = {flags.alpha, flags.k, flags.threads, deform::SkinMethod::idw};
-  if (!deform::parseSkinMethod(flags.skin_method, options.skin.method))
-    throw deform::InputError("--skin-method: must be idw or mls (got '" + flags.skin_method + "')");
+  options.skin = {flags.alpha, flags.k, flags.threads, deform::preferredSkinMethod(flags.control_points)};
+  if (flags.skin_method != "auto" && !deform::parseSkinMethod(flags.skin_method, options.skin.method))
+    throw deform::InputError("--skin-method: must be auto, idw or mls (got '" + flags.skin_method + "')");
   // Every flag checked before the mesh is loaded (a large file takes seconds).
   const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   const auto report = meshReport(model, options);
@@ -68,8 +68,8 @@ void registerMeshCommands(CLI::App& app) {
   info->add_option("--alpha", flags->alpha, "Inverse-distance power of the embedding")->capture_default_str();
   info->add_option("--k", flags->k, "Influences per vertex (0 = dense)")->capture_default_str();
   info->add_option("--skin-method", flags->skin_method,
-                   "Skin weights: idw (inverse distance, the paper's) or mls (moving least squares, affine "
-                   "maps exact)")
+                   "Skin weights: auto (mls up to 60 control points, idw above: the better measured), idw "
+                   "(inverse distance, the paper's) or mls (moving least squares, affine maps exact)")
       ->capture_default_str();
   info->add_option("--mass-kg", flags->mass_kg, "Vehicle mass [kg]")->capture_default_str();
   info->add_option("--threads", flags->threads, "Worker threads (0 = all cores)")->capture_default_str();

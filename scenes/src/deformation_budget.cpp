@@ -140,6 +140,7 @@ void applyBudget(const BudgetPlan& plan, SceneConfig& scene) {
     if (!level) continue;
     applyLevel(*level, scene.vehicles[i].deformation.settings);
     scene.vehicles[i].deformation.preset = level->name;
+    resolveSkinMethod(scene.vehicles[i].deformation);  // `auto` follows the level's control points
   }
 }
 

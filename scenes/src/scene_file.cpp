@@ -114,8 +114,9 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     s.k_nearest =
         static_cast<std::size_t>(object->integer("k_nearest", static_cast<long long>(s.k_nearest), 0, 64));
     const std::string skin_method =
-        object->choice("skin_method", std::string(deform::skinMethodName(s.skin_method)), {"idw", "mls"});
-    deform::parseSkinMethod(skin_method, s.skin_method);
+        object->choice("skin_method", std::string("auto"), {"auto", "idw", "mls"});
+    d.skin_method_auto = skin_method == "auto";
+    if (!d.skin_method_auto) deform::parseSkinMethod(skin_method, s.skin_method);
     s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
     s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
     s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);
@@ -163,6 +164,7 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     object->finish();
   }
   d.settings.coupling = coupling;
+  resolveSkinMethod(d);
   return d;
 }
 
@@ -321,6 +323,10 @@ std::string lineColumn(const std::string& text, std::size_t offset) {
 }
 
 }  // namespace
+
+void resolveSkinMethod(DeformationConfig& d) {
+  if (d.skin_method_auto) d.settings.skin_method = deform::preferredSkinMethod(d.settings.control_points);
+}
 
 std::optional<DeformationConfig> deformationPreset(const std::string& name) {
   // The presets are levels of the budget's table (deformation_budget.cpp), chosen from the measured front

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <scenes/deformation_budget.hpp>
 #include <scenes/scene_file.hpp>
 
 #include <deform/error.hpp>
@@ -323,10 +324,31 @@ TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or th
              Catch::Contains("vehicle.deformation.rigid_parts: applies to backstop rigid_parts"));
 }
 
-TEST_CASE("vehicle.deformation.skin_method takes idw or mls and refuses anything else", "[scenes]") {
+TEST_CASE("vehicle.deformation.skin_method takes auto, idw or mls and refuses anything else", "[scenes]") {
   json doc = minimalScene();
+  // The default, auto: the skin measured best at the car's level of detail (mls up to 60 points).
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.skin_method_auto);
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
-        deform::SkinMethod::idw);  // the paper's, the default
+        deform::SkinMethod::mls);
+  doc["vehicle"]["deformation"]["control_points"] = 120;
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);
+  doc["vehicle"]["deformation"]["skin_method"] = "auto";
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);
+  // A budget that changes the level changes auto's choice; a method named stays.
+  scenes::SceneConfig config = scenes::parseScene(doc, "test.json");
+  scenes::BudgetPlan plan;
+  plan.cars.push_back({});
+  plan.cars[0].level = "balanced";  // 60 points
+  scenes::applyBudget(plan, config);
+  CHECK(config.vehicles[0].deformation.settings.skin_method == deform::SkinMethod::mls);
+  doc["vehicle"]["deformation"]["skin_method"] = "idw";
+  config = scenes::parseScene(doc, "test.json");
+  scenes::applyBudget(plan, config);
+  CHECK(config.vehicles[0].deformation.settings.skin_method == deform::SkinMethod::idw);
+  doc["vehicle"]["deformation"].erase("control_points");
+  doc["vehicle"]["deformation"].erase("skin_method");
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.skin_method=mls"));
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::mls);

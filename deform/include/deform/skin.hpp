@@ -4,9 +4,10 @@
 // reads them. Two choices of weights (SkinMethod):
 //   idw: phi_ij = 1 / |c_i0 - v_j|^alpha normalised so that sum_i phi_ij = 1 (Kenwright 2015, equation 1):
 //        reproduces a translation of the control points, not a rotation, stretch or shear;
-//   mls: moving least squares with an affine fit, the same inverse distances as its weight (Schaefer,
-//        McPhail & Warren 2006, affine case): sum_i w_ij = 1 and sum_i w_ij c_i0 = v_j, so any affine
-//        motion of the control points moves the vertices by that same map (linear precision).
+//   mls: moving least squares with an affine fit, the same inverse distances as its weight less the one
+//        the (K+1)-th nearest point would have, so that the weights are continuous where the K nearest
+//        change (Schaefer, McPhail & Warren 2006, affine case): sum_i w_ij = 1 and sum_i w_ij c_i0 = v_j, so
+//        any affine motion of the control points moves the vertices by that same map (linear precision).
 #include <deform/parallel.hpp>
 
 #include <Eigen/Core>
@@ -26,6 +27,19 @@ enum class SkinMethod : uint8_t {
 const char* skinMethodName(SkinMethod method);
 /// The method named `name` ("idw" or "mls"), or false when there is none.
 bool parseSkinMethod(const std::string& name, SkinMethod& method);
+
+/// The largest level of detail at which mls is the better skin [control points]. On the built-in sedan
+/// (`sandbox tradeoff --skin-only`, K = 8, alpha 3.5; docs/TRADEOFF.md) mls has the lower RMS and the
+/// lower largest vertex error on every field at 60 points (the real crash's dent: 24.0 mm RMS, 185 mm
+/// largest, against idw's 30.0 and 218). At 120 points its RMS is still lower (8.8 against 12.3 mm) but
+/// its largest error is not (137 against 86 mm), and from 250 points its affine fit extrapolates the
+/// dent's edge to vertices set back from the hull (RMS 14.7 against 11.7 mm at 250, 27.7 against 3.6 at
+/// 2,000).
+inline constexpr std::size_t kMlsUpToControlPoints = 60;
+
+/// The skin measured best at `control_points` (what the skin method `auto` chooses): mls up to
+/// kMlsUpToControlPoints (the presets fast and balanced), idw above.
+SkinMethod preferredSkinMethod(std::size_t control_points);
 
 /// How a skin stores its weights (Skin::build). The per-frame pass is memory-bound (docs/BENCHMARKS.md):
 /// its cost follows the bytes it reads per vertex, so the compact form is the default.

@@ -14,13 +14,13 @@ Figure wallCrashFigure(const FigureOptions& o) {
   char caption[640];
   std::snprintf(
       caption, sizeof caption,
-      "`sandbox run wall_crash`: the built-in sedan (%zu vertices, %zu control points, crush coupling) "
-      "into a rigid wall at %.1f km/h, after the rebound; coloured by permanent displacement (red "
+      "`sandbox run wall_crash`: the built-in sedan (%zu vertices, %zu control points, crush coupling, "
+      "%s skin) into a rigid wall at %.1f km/h, after the rebound; coloured by permanent displacement (red "
       "%.2f m, blue none). Residual crush %.3f m averaged over six stations (largest %.3f m), "
       "restitution %.2f, plastic work %.0f kJ of %.0f kJ.",
-      car.dented.positions_m.size(), car.control_points, 3.6 * car.metrics.impact_speed_mps,
-      car.metrics.max_deviation_m, car.metrics.residual_crush_m, car.metrics.max_residual_crush_m,
-      car.metrics.restitution, car.metrics.energy.plastic_work_J / 1e3,
+      car.dented.positions_m.size(), car.control_points, deform::skinMethodName(car.skin_method),
+      3.6 * car.metrics.impact_speed_mps, car.metrics.max_deviation_m, car.metrics.residual_crush_m,
+      car.metrics.max_residual_crush_m, car.metrics.restitution, car.metrics.energy.plastic_work_J / 1e3,
       car.metrics.energy.kinetic_initial_J / 1e3);
   return {"wall_crash.png", caption};
 }
@@ -35,12 +35,13 @@ Figure minorHitsFigure(const FigureOptions& o) {
       caption, sizeof caption,
       "`sandbox run post_bumps --set vehicle.mesh=builtin:sedan?vertices=900000`: a %zu-vertex sedan with "
       "%zu "
-      "control points after knocking over a small tree and a shrub (rigid for the hull, denting the body by "
+      "control points (%s skin) after knocking over a small tree and a shrub (rigid for the hull, denting "
+      "the body by "
       "their contact impulses) and nudging a 0.2 m steel bollard at 15 km/h; coloured by permanent "
       "displacement (red %.3f m, blue none), residual crush %.3f m; the car went %.2f m into what it hit "
       "(the face contacts dent the surface between the control points).",
-      car.dented.positions_m.size(), car.control_points, car.metrics.max_deviation_m,
-      car.metrics.max_residual_crush_m, car.metrics.max_dynamic_crush_m);
+      car.dented.positions_m.size(), car.control_points, deform::skinMethodName(car.skin_method),
+      car.metrics.max_deviation_m, car.metrics.max_residual_crush_m, car.metrics.max_dynamic_crush_m);
   return {"minor_hits.png", caption};
 }
 

@@ -37,6 +37,7 @@ DentedCar dentCar(scenes::SceneRun& run, std::optional<deform::SkinMethod> metho
   car.colours = deform::displacementColours(skin.restPositions(), car.dented.positions_m);
   car.metrics = sim.metrics(id);
   car.control_points = sim.controlRestPoints(id).size();
+  car.skin_method = settings.skin_method;
   return car;
 }
 

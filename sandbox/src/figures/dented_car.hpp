@@ -22,6 +22,7 @@ struct DentedCar {
   std::vector<Eigen::Vector3f> colours;          ///< permanent displacement, blue none .. red most
   vehicle::CrashMetrics metrics;
   std::size_t control_points = 0;
+  deform::SkinMethod skin_method = deform::SkinMethod::idw;  ///< the skin that dented the render mesh
 };
 
 /// Car 0 of `run` (played as far as wanted) dented by its control points through the car's skin, or
