@@ -78,7 +78,8 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
           std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
                            ranked.end());
         ranked.resize(asked);
-        std::sort(ranked.begin(), ranked.end());
+        if (asked > K)  // the (K+1)-th nearest last
+          std::iter_swap(std::max_element(ranked.begin(), ranked.end()), ranked.end() - 1);
       }
       double cutoff_m = 0;
       if (asked > K) {

@@ -32,15 +32,20 @@ bool movingLeastSquaresWeights(const Eigen::Vector3d& v_m, const Eigen::Vector3d
     // as it leaves the K nearest: the fit, and so the deformed surface, is continuous where the set of
     // nearest points changes. Without it the fit jumped there and left creases on a dented 200k-vertex
     // bumper (docs/TRADEOFF.md). A point swapped in from further (widenSpan) keeps its own weight.
+    // Points all as far as the next one (a symmetric set, within rounding) would leave nothing: the
+    // plain weights stay then.
     const double d_min = *std::min_element(distance_m, distance_m + count);
     const double beyond = std::pow(d_min / cutoff_m, alpha);
+    thread_local std::vector<double> cut;
+    cut.resize(count);
     double sum = 0;
     for (std::size_t k = 0; k < count; ++k) {
       const double phi = std::pow(d_min / distance_m[k], alpha);
-      weight[k] = distance_m[k] < cutoff_m ? phi - beyond : phi;
-      sum += weight[k];
+      cut[k] = distance_m[k] < cutoff_m ? phi - beyond : phi;
+      sum += cut[k];
     }
-    for (std::size_t k = 0; k < count; ++k) weight[k] /= sum;
+    if (sum > 0)
+      for (std::size_t k = 0; k < count; ++k) weight[k] = cut[k] / sum;
   }
 
   // Schaefer, McPhail & Warren 2006, equations (4)-(5), affine map, written for weights: with

@@ -195,6 +195,31 @@ TEST_CASE("mls with flat or collinear control points: finite, and exact within w
   CHECK(largestWeightSumError(one) == 0.0);
 }
 
+TEST_CASE("mls: a vertex as far from its K-th nearest point as from the next one stays finite",
+          "[skin][mls]") {
+  // The weights fall to zero at the (K+1)-th point's distance: at the centre of a cube whose 8 corners and
+  // 2 more points are all equidistant, every one of the K nearest sits there, and the weights must not
+  // all vanish (0 / 0). Vertices near the centre, and the centre itself, with K = 4, 8 and 9.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+  points.emplace_back(std::sqrt(3.0), 0, 0);
+  points.emplace_back(0, -std::sqrt(3.0), 0);
+  const std::vector<Eigen::Vector3f> vertices = {{0, 0, 0}, {1e-7f, 0, 0}, {0.01f, -0.02f, 0.005f}};
+  for (std::size_t k : {4u, 8u, 9u}) {
+    CAPTURE(k);
+    const auto skin = deform::Skin::build(vertices, points, {3.5, k, 1, SkinMethod::mls});
+    CHECK(allFinite(skin));
+    CHECK(largestWeightSumError(skin) < 1e-5);
+  }
+  // Exactly equidistant (unit distances): the six points of an octahedron about the vertex, K = 4.
+  const std::vector<Eigen::Vector3d> octahedron = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                                   {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  const auto skin =
+      deform::Skin::build(std::vector<Eigen::Vector3f>{{0, 0, 0}}, octahedron, {3.5, 4, 1, SkinMethod::mls});
+  CHECK(allFinite(skin));
+  CHECK(largestWeightSumError(skin) < 1e-5);
+}
+
 TEST_CASE("mls weights are the same with any thread count", "[skin][mls]") {
   Sedan s;
   const auto a = deform::Skin::build(s.car.body.positions_m, s.control, {3.5, 8, 1, SkinMethod::mls});

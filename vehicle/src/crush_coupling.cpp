@@ -257,8 +257,14 @@ void Simulation::Impl::advanceGhost(DeformableCar& dc) const {
   // The velocity ODE's contacts with what the car crushes took from the chassis stays with the ghost.
   if (dc.settings.coupling != Coupling::Visual) return;
   Eigen::Vector3d taken_Ns{0, 0, 0};
+  dc.ghost_in_ode_contact = false;
+  dc.ghost_contact_normal.setZero();
   for (const CarContact& c : world.carContacts(dc.id))
-    if (crushable(world, c.other)) taken_Ns += c.impulse_N_s;
+    if (crushable(world, c.other)) {
+      taken_Ns += c.impulse_N_s;
+      dc.ghost_in_ode_contact = true;
+      dc.ghost_contact_normal += c.normal;
+    }
   dc.ghost_velocity_mps -= onTheGround(dc, taken_Ns) / world.car(dc.id).mass_kg();
   dc.ghost_offset_m += dc.ghost_velocity_mps * world.fixedDt_s();  // where it is at the end of this step
 }
@@ -274,20 +280,13 @@ void Simulation::Impl::updateGhost(DeformableCar& dc) const {
   // (with an obstacle or another car), the impact is over; with it (a car resting against a wall), the
   // ghost does not draw back behind the chassis along the contact normal, so that the next push meets the
   // obstacle where it stands.
-  bool in_ode_contact = false;
-  Eigen::Vector3d normal{0, 0, 0};  // out of what the car touches, into the car
-  for (const CarContact& c : world.carContacts(dc.id))
-    if (crushable(world, c.other)) {
-      in_ode_contact = true;
-      normal += c.normal;
-    }
-  if (!in_ode_contact) {
+  if (!dc.ghost_in_ode_contact) {
     dc.ghost_velocity_mps.setZero();
     dc.ghost_offset_m.setZero();
     return;
   }
-  if (!(normal.norm() > 1e-12)) return;
-  normal.normalize();
+  if (!(dc.ghost_contact_normal.norm() > 1e-12)) return;
+  const Eigen::Vector3d normal = dc.ghost_contact_normal.normalized();
   dc.ghost_offset_m -= std::max(0.0, dc.ghost_offset_m.dot(normal)) * normal;
   dc.ghost_velocity_mps -= std::max(0.0, dc.ghost_velocity_mps.dot(normal)) * normal;
 }

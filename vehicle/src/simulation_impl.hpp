@@ -71,8 +71,13 @@ struct DeformableCar {
   /// to the chassis, vehicle frame. ODE's contact impulses on the chassis go to it (their velocity change is
   /// the ghost's), the body's contact impulses take them back, and what it hits is met where the ghost
   /// would meet it: the dent the crush coupling gives for the same impact, the chassis's motion left to
-  /// ODE (visualGhost, crush_coupling.cpp) [m/s], [m].
+  /// ODE (advanceGhost and updateGhost, crush_coupling.cpp) [m/s], [m].
   Eigen::Vector3d ghost_velocity_mps{0, 0, 0}, ghost_offset_m{0, 0, 0};
+  /// This step's ODE contacts with anything crushable (advanceGhost, after ODE's step): whether there are
+  /// any, and the sum of their normals (vehicle frame, out of what the car touches). Not state: each step
+  /// finds its own.
+  bool ghost_in_ode_contact = false;
+  Eigen::Vector3d ghost_contact_normal{0, 0, 0};
   /// Crush: (I_chassis + I_shell)^-1 I_chassis (chassis axes) [-]; its transpose is the chassis's share of
   /// a moment the body hands the core (finishCar), the shell turning with it taking the rest.
   Eigen::Matrix3d chassis_share_of_rotation = Eigen::Matrix3d::Identity();
