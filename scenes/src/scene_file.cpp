@@ -337,6 +337,7 @@ std::optional<DeformationConfig> deformationPreset(const std::string& name) {
   DeformationConfig d;
   d.preset = name;
   applyLevel(*level, d.settings);  // the rest: vehicle's calibrated defaults
+  resolveSkinMethod(d);            // auto: the skin measured best at the preset's control points
   return d;
 }
 

@@ -7,6 +7,7 @@
 #include <scenes/scene_file.hpp>
 
 #include <deform/error.hpp>
+#include <deform/skin.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -66,6 +67,7 @@ TEST_CASE("Budget: the levels cost more the finer they are, and the presets are 
     CHECK(preset->settings.control_points == level->control_points);
     CHECK(preset->settings.substeps == level->substeps);
     CHECK(preset->settings.iterations == level->iterations);
+    CHECK(preset->settings.skin_method == deform::preferredSkinMethod(level->control_points));  // auto
   }
 }
 

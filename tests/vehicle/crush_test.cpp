@@ -231,8 +231,8 @@ TEST_CASE("Crush: car to car, both dent from the other's surface", "[crush]") {
 }
 
 TEST_CASE("Crush: two cars in the visual coupling dent each other as one solve", "[crush]") {
-  // Their ghosts meet (car_group.cpp: the link carries both ghosts), their bodies one solve: the same dent
-  // on both, each car's energy account closed, and the chassis moved by ODE's rigid contact alone.
+  // Their ghosts meet (car_group.cpp: the link carries both ghosts), their bodies one solve: both dent
+  // alike within the measured asymmetry, and each car's energy account closes.
   DeformationSettings visual;
   visual.coupling = Coupling::Visual;
   Simulation sim;

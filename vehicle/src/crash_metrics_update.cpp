@@ -113,7 +113,8 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   // test's dynamic crush). Against something that moves (another car, a pushed box) that approach also
   // counts how the two turn and slide about each other after the hit: cars pressed into a pile-up
   // "crushed" 3.5-5.7 m with their points never 0.2 m from rest. There it is the body's own crush: the
-  // largest motion of a control point back from its rest place along the impact direction.
+  // largest motion of a control point back from its rest place along the impact direction. So it is in
+  // the visual coupling, whose chassis ODE stops at the surface while the ghost crushes the body.
   const bool fixed = dc.impact_other.kind == EntityRef::Kind::Obstacle &&
                      !world.obstacleIsDynamic(dc.impact_other.index) &&
                      dc.settings.coupling == Coupling::Crush;
