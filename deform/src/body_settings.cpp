@@ -9,6 +9,7 @@
 #include <string>
 
 #include "material_field.hpp"
+#include "sweep_order.hpp"
 
 namespace deform {
 namespace {
@@ -61,6 +62,40 @@ double area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vec
 void checkDeviation(double value, const std::string& field) {
   if (!std::isfinite(value) || value <= 0)
     throw InputError(field + ": must be finite and > 0 (got " + std::to_string(value) + " m)");
+}
+
+template <class T>
+void permute(std::vector<T>& values, const std::vector<uint32_t>& order) {
+  std::vector<T> out;
+  out.reserve(order.size());
+  for (uint32_t k : order) out.push_back(values[k]);
+  values = std::move(out);
+}
+
+/// Puts the edges and the bends in sweep order (sweep_order.hpp): the body's two halves, then the
+/// constraints across the cut.
+void putInSweepOrder(BodySettings& s) {
+  const std::vector<uint8_t> halves = bodyHalves(s.rest_positions_m);
+  std::vector<std::array<uint32_t, 2>> pairs;
+  for (const EdgeConstraint& e : s.edges) pairs.push_back({e.a, e.b});
+  SweepOrder sweep = sweepOrder(pairs, halves);
+  permute(s.edges, sweep.order);
+  permute(s.edge_rest_m, sweep.order);
+  permute(s.edge_yield, sweep.order);
+  s.edge_half_end = sweep.half_end;
+  pairs.clear();
+  for (const BendConstraint& b : s.bends) pairs.push_back({b.left, b.right});
+  sweep = sweepOrder(pairs, halves);
+  permute(s.bends, sweep.order);
+  permute(s.bend_rest_m, sweep.order);
+  permute(s.bend_yield, sweep.order);
+  s.bend_half_end = sweep.half_end;
+  s.column_order.clear();
+  for (int half : {0, 1})
+    for (uint32_t k = 0; k < s.spokes.size(); ++k)
+      if (halves[s.spokes[k].point] == half) s.column_order.push_back(k);
+  s.column_half_end = static_cast<uint32_t>(std::count_if(
+      s.spokes.begin(), s.spokes.end(), [&](const SpokeConstraint& c) { return halves[c.point] == 0; }));
 }
 
 }  // namespace
@@ -272,6 +307,7 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
     s.spoke_anchor_m.push_back(anchor - s.core_m);
     s.spoke_yield.push_back({yield_force_N * compliance, yield_force_N * compliance});
   }
+  putInSweepOrder(s);
   return s;
 }
 

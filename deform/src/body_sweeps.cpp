@@ -4,9 +4,35 @@
 #include <deform/constraints.hpp>
 #include <deform/deformable_body.hpp>
 
+#include <omp.h>
+
 #include <cmath>
 
 namespace deform {
+
+void DeformableBody::refreshDistanceFactors() {
+  const BodySettings& s = *settings_;
+  const auto& w = s.inverse_mass_per_kg;
+  const double inv_h2 = 1.0 / (h_s_ * h_s_);
+  edge_factors_.resize(s.edges.size());
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    edge_factors_[k] =
+        distanceFactors(w[s.edges[k].a], w[s.edges[k].b], s.edges[k].compliance_m_per_N, inv_h2);
+  bend_factors_.resize(s.bends.size());
+  for (std::size_t k = 0; k < s.bends.size(); ++k)
+    bend_factors_[k] =
+        distanceFactors(w[s.bends[k].left], w[s.bends[k].right], s.bends[k].compliance_m_per_N, inv_h2);
+  // The core as each column sees it (sweepConstraints: heavier where the shell outweighs it).
+  const double w_core = core_inverse_mass_per_kg_, split = core_share_sum_;
+  column_factors_.resize(s.spokes.size());
+  for (std::size_t k = 0; k < s.spokes.size(); ++k) {
+    const double wi = w[s.spokes[k].point];
+    column_factors_[k] = distanceFactors(wi, split > 1 ? split * w_core + (split - 1) * wi : w_core,
+                                         s.spokes[k].compliance_m_per_N, inv_h2);
+  }
+  factors_h_s_ = h_s_;
+  factors_core_per_kg_ = w_core;
+}
 
 void DeformableBody::movedBy(uint32_t shape, uint32_t i, const Eigen::Vector3d& dx) {
   // A correction by obstacle `shape` of point `i`: its momentum x h, and the obstacle's work on the point,
@@ -22,26 +48,38 @@ void DeformableBody::movedBy(uint32_t shape, uint32_t i, const Eigen::Vector3d& 
 }
 
 // The constraint sweeps, with their yield forces as multiplier bounds (force-limited) or without: the
-// unlimited sweep reads no yield arrays, so it costs what it did before they existed.
+// unlimited sweep reads no yield arrays, so it costs what it did before they existed. The edges, then
+// the columns (or spokes), then the bends; the edges and bends of each half of the body side by side on
+// two threads (SolverParams::threads), then those across the cut; the same order on one thread.
 template <bool kLimited>
 void DeformableBody::sweepConstraints() {
   const BodySettings& settings = *settings_;
-  auto& x = state_.positions_m;
-  const auto& w = settings.inverse_mass_per_kg;
-  const auto& m = settings.mass_kg;
+  if (!(factors_h_s_ == h_s_ && factors_core_per_kg_ == core_inverse_mass_per_kg_)) refreshDistanceFactors();
+  // Raw pointers: the compiler then need not reload a vector's data through `this` in every iteration.
+  Eigen::Vector3d* x = state_.positions_m.data();
+  const double* w = settings.inverse_mass_per_kg.data();
+  const double* m = settings.mass_kg.data();
+  double* edge_lambda = edge_lambda_.data();
+  double* spoke_lambda = spoke_lambda_.data();
+  double* bend_lambda = bend_lambda_.data();
+  Eigen::Vector3d* column_lambda = column_lambda_.data();
+  const double* column_taken = column_taken_m_.data();
+  const uint8_t* column_bottomed = column_bottomed_.data();
+  const DistanceFactors* column_factors = column_factors_.data();
   const double w_core = core_inverse_mass_per_kg_;
   const double h = h_s_;
   const double inv_h = 1.0 / h;
   const double inv_h2 = inv_h * inv_h;
   const double h2 = h * h;
-  const std::size_t edge_count = settings.edges.size(), spoke_count = settings.spokes.size(),
-                    bend_count = settings.bends.size();
+  const std::size_t spoke_count = settings.spokes.size();
   const EdgeConstraint* edges = settings.edges.data();
   const SpokeConstraint* spokes = settings.spokes.data();
   const BendConstraint* bends = settings.bends.data();
   const double* edge_rest = state_.edge_rest_m.data();
   const double* spoke_rest = state_.spoke_rest_m.data();
   const double* bend_rest = state_.bend_rest_m.data();
+  const DistanceFactors* edge_factors = edge_factors_.data();
+  const DistanceFactors* bend_factors = bend_factors_.data();
   const YieldForce* edge_yield = edge_yield_N_.data();
   const YieldForce* spoke_yield = spoke_yield_N_.data();
   const YieldForce* bend_yield = bend_yield_N_.data();
@@ -50,14 +88,23 @@ void DeformableBody::sweepConstraints() {
   const Eigen::Vector3d* column_rest = state_.column_rest_m.data();
   const Eigen::Vector3d* normals = settings.spoke_normal.data();
   const YieldLimits* spoke_limits = settings.spoke_yield.data();
-  Eigen::Vector3d& core = sub_.core;
-  Eigen::Vector3d& spoke_twist = sub_.spoke_twist;
-  for (std::size_t k = 0; k < edge_count; ++k) {
-    const EdgeConstraint& c = edges[k];
-    projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], c.compliance_m_per_N * inv_h2,
-                    edge_lambda_[k], kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
-                    kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
-  }
+  const Eigen::Vector3d core = sub_.core;
+  auto sweepEdges = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const EdgeConstraint& c = edges[k];
+      projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], edge_factors[k], edge_lambda[k],
+                      kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
+                      kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
+    }
+  };
+  auto sweepBends = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const BendConstraint& c = bends[k];
+      projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k], bend_factors[k],
+                      bend_lambda[k], kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
+                      kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
+    }
+  };
   // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
   // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
   // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
@@ -69,22 +116,28 @@ void DeformableBody::sweepConstraints() {
   // points' moves. A car's shell is a third of its core (S < 1/3): untouched.
   const double split = core_share_sum_;
   auto coreSeenBy = [&](uint32_t i) { return split > 1 ? split * w_core + (split - 1) * w[i] : w_core; };
-  Eigen::Vector3d sweep_pull{0, 0, 0};
-  if (anchored) {  // crush columns, or spokes below
-    // Crush columns: each holds its point at its rest place, which moves with the core.
-    const Eigen::Vector3d shift = core - settings.core_m;
-    for (std::size_t k = 0; k < spoke_count; ++k) {
+  // Each half of the columns sums its own pull and twist, and the halves are added in order: the same
+  // sums on one thread or two.
+  struct Reaction {
+    Eigen::Vector3d pull{0, 0, 0}, twist{0, 0, 0};
+  };
+  Reaction reaction[2];
+  const Eigen::Vector3d shift = core - settings.core_m;
+  const uint32_t* column_order = settings.column_order.data();
+  auto sweepColumns = [&](std::size_t begin, std::size_t end, Reaction& out) {
+    for (std::size_t j = begin; anchored && j < end; ++j) {
+      // Crush columns: each holds its point at its rest place, which moves with the core.
+      const std::size_t k = column_order[j];
       const SpokeConstraint& c = spokes[k];
       const uint32_t i = c.point;
       const Eigen::Vector3d before = x[i];
       const Eigen::Vector3d& rest = column_rest[k];
-      const double alpha_tilde = c.compliance_m_per_N * inv_h2;
       if constexpr (kLimited) {
-        const double taken = column_taken_m_[k];    // what hardening has added to its yield, and whether it
-        const bool bottomed = column_bottomed_[k];  // has crushed to its clamp (refreshColumn)
+        const double taken = column_taken[k];      // what hardening has added to its yield, and whether it
+        const bool bottomed = column_bottomed[k];  // has crushed to its clamp (refreshColumn)
         const double to_lambda = h2 / c.compliance_m_per_N;
         projectColumn(
-            x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k],
+            x[i], rest + shift, w[i], column_factors[k], column_lambda[k],
             [&](const Eigen::Vector3d& push) {
               // The column pushes along lambda: its point is displaced along -lambda.
               if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
@@ -94,33 +147,70 @@ void DeformableBody::sweepConstraints() {
               return columnSurelyWithinLimit(normals[k], next, spoke_limits[k], to_lambda, bottomed);
             });
       } else {
-        projectColumn(x[i], rest + shift, w[i], coreSeenBy(i), alpha_tilde, column_lambda_[k], nullptr);
+        projectColumn(x[i], rest + shift, w[i], column_factors[k], column_lambda[k], nullptr);
       }
       const Eigen::Vector3d pull = m[i] * (x[i] - before);
-      sweep_pull += pull;
-      spoke_twist += (rest - settings.core_m).cross(pull);
+      out.pull += pull;
+      out.twist += (rest - settings.core_m).cross(pull);
     }
+    for (std::size_t j = begin; !anchored && j < end; ++j) {
+      const std::size_t k = column_order[j];
+      const SpokeConstraint& c = spokes[k];
+      const Eigen::Vector3d before = x[c.point];
+      Eigen::Vector3d anchor = core + anchors[k];
+      projectSpoke(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k],
+                   c.compliance_m_per_N * inv_h2, spoke_lambda[k],
+                   kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+                   kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
+      const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
+      out.pull += pull;
+      out.twist += anchors[k].cross(pull);
+    }
+  };
+  const auto& edge_end = settings.edge_half_end;
+  const auto& bend_end = settings.bend_half_end;
+  const std::size_t column_half = settings.column_half_end;
+  // Part `half` of the sweep (0 or 1: the halves, side by side; 2: what crosses the cut) of one kind.
+  auto edgesOf = [&](int half) {
+    if (half < 2)
+      sweepEdges(half == 0 ? 0 : edge_end[0], edge_end[static_cast<std::size_t>(half)]);
+    else
+      sweepEdges(edge_end[1], settings.edges.size());
+  };
+  auto bendsOf = [&](int half) {
+    if (half < 2)
+      sweepBends(half == 0 ? 0 : bend_end[0], bend_end[static_cast<std::size_t>(half)]);
+    else
+      sweepBends(bend_end[1], settings.bends.size());
+  };
+  auto columnsOf = [&](int half) {
+    sweepColumns(half == 0 ? 0 : column_half, half == 0 ? column_half : spoke_count,
+                 reaction[half == 0 ? 0 : 1]);
+  };
+  if (params_.threads > 1) {
+#pragma omp parallel num_threads(2)
+    {
+      const int half = omp_get_thread_num() == 0 ? 0 : 1;
+      edgesOf(half);
+#pragma omp barrier
+#pragma omp single
+      edgesOf(2);
+      // No barrier between a half's columns and its bends: the other half's touch none of its points.
+      columnsOf(half);
+      bendsOf(half);
+#pragma omp barrier
+#pragma omp single
+      bendsOf(2);
+    }
+  } else {
+    for (int half : {0, 1, 2}) edgesOf(half);
+    for (int half : {0, 1}) columnsOf(half);
+    for (int half : {0, 1, 2}) bendsOf(half);
   }
-  for (std::size_t k = 0; !anchored && k < spoke_count; ++k) {
-    const SpokeConstraint& c = spokes[k];
-    const Eigen::Vector3d before = x[c.point];
-    Eigen::Vector3d anchor = core + anchors[k];
-    projectSpoke(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k],
-                 c.compliance_m_per_N * inv_h2, spoke_lambda_[k],
-                 kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
-                 kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
-    const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
-    sweep_pull += pull;
-    spoke_twist += anchors[k].cross(pull);
-  }
+  const Eigen::Vector3d sweep_pull = reaction[0].pull + reaction[1].pull;
+  sub_.spoke_twist += reaction[0].twist + reaction[1].twist;
   sub_.spoke_pull_Ns += sweep_pull;
-  core -= w_core * sweep_pull;
-  for (std::size_t k = 0; k < bend_count; ++k) {
-    const BendConstraint& c = bends[k];
-    projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k], c.compliance_m_per_N * inv_h2,
-                    bend_lambda_[k], kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
-                    kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
-  }
+  sub_.core -= w_core * sweep_pull;
 }
 
 void DeformableBody::iterate() {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <queue>
 #include <string>
 #include <tuple>
@@ -308,6 +309,52 @@ LodMethod parseLodMethod(const std::string& text, const std::string& field) {
   throw InputError(field + ": '" + text + "' is not a level-of-detail method (even, simplify)");
 }
 
+namespace {
+
+/// Numbers the control points in order along the longest side of their bounding box (ties by the old
+/// number): the body's two halves across that side (the sweep's, deform/src/sweep_order.hpp) are then
+/// the first and the second half of the arrays, so two threads sweeping them write to different cache
+/// lines (numbered as they were chosen, the halves' points alternated in memory: 1.05x on two threads
+/// against 1.15x).
+void numberAlongLongestSide(ControlMesh& mesh) {
+  const std::size_t n = mesh.points_m.size();
+  if (n == 0) return;
+  Eigen::Vector3d low = mesh.points_m[0], high = mesh.points_m[0];
+  for (const auto& p : mesh.points_m) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  Eigen::Index axis = 0;
+  (high - low).maxCoeff(&axis);
+  std::vector<uint32_t> old_of(n);
+  std::iota(old_of.begin(), old_of.end(), 0u);
+  std::stable_sort(old_of.begin(), old_of.end(),
+                   [&](uint32_t i, uint32_t j) { return mesh.points_m[i][axis] < mesh.points_m[j][axis]; });
+  std::vector<uint32_t> new_of(n);
+  for (uint32_t k = 0; k < n; ++k) new_of[old_of[k]] = k;
+  std::vector<Eigen::Vector3d> points(n);
+  for (uint32_t k = 0; k < n; ++k) points[k] = mesh.points_m[old_of[k]];
+  mesh.points_m = std::move(points);
+  for (auto& t : mesh.triangles)
+    for (uint32_t& corner : t) corner = new_of[corner];
+  if (!mesh.mirror_of.empty()) {
+    std::vector<uint32_t> mirror(n);
+    for (uint32_t k = 0; k < n; ++k) mirror[k] = new_of[mesh.mirror_of[old_of[k]]];
+    mesh.mirror_of = std::move(mirror);
+  }
+  // The edges keep their order, which is not along the body: a Gauss-Seidel sweep along it carried a
+  // push at the front through the whole body in one sweep (a pole 15 cm into the front moved the rear
+  // half 10 mm, against 5 mm in this order).
+  for (ControlEdge& e : mesh.edges) {
+    e.a = new_of[e.a];
+    e.b = new_of[e.b];
+    e.left = new_of[e.left];
+    e.right = new_of[e.right];
+  }
+}
+
+}  // namespace
+
 ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::size_t target_points,
                              const char* source, LodMethod method) {
   const std::string where = source ? source : "mesh";
@@ -329,6 +376,7 @@ ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::si
     refineHull(mesh, target_points);
     finishControlMesh(mesh);
   }
+  numberAlongLongestSide(mesh);
   mesh.hull_vertex_count = hull_vertices;
   // The body's centre of mass is the full hull's, whatever the level of detail, as long as the control
   // surface encloses it (every tetrahedron of the fan positive); a very coarse mesh keeps its own.

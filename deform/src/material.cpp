@@ -47,6 +47,7 @@ uint32_t substepsNoLongerThan(double dt_s, uint32_t substeps, double longest_s) 
 void checkSolverParams(const SolverParams& params) {
   if (params.substeps < 1) throw InputError("substeps: must be at least 1 (got 0)");
   if (params.iterations < 1) throw InputError("iterations: must be at least 1 (got 0)");
+  if (params.threads < 1) throw InputError("threads: must be at least 1 (got 0)");
   requireNonNegative(params.damping_per_s, "damping_per_s");
   requireNonNegative(params.inertial_scale, "inertial_scale");
   requireNonNegative(params.contact_margin_m, "contact_margin_m");

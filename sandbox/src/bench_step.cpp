@@ -36,7 +36,8 @@ struct BenchStepFlags {
   double mass_kg = 1500;
   bool anchored_columns = false;  ///< deform::BodyDescription::anchored_columns
   bool yield_limited = false;     ///< deform::SolverParams::yield_limited
-  std::string peer;  ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
+  uint32_t threads = 1;  ///< deform::SolverParams::threads
+  std::string peer;      ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
   bool json = false;
 };
 
@@ -47,6 +48,7 @@ void check(const BenchStepFlags& f) {
   if (f.substeps < 1) throw deform::InputError("--substeps: must be at least 1 (got 0)");
   if (f.iterations < 1) throw deform::InputError("--iterations: must be at least 1 (got 0)");
   if (f.steps < 1) throw deform::InputError("--steps: must be at least 1 (got 0)");
+  if (f.threads < 1) throw deform::InputError("--threads: must be at least 1 (got 0)");
   if (!(std::isfinite(f.dt_s) && f.dt_s > 0)) throw deform::InputError("--dt: must be finite and > 0");
   if (!(std::isfinite(f.mass_kg) && f.mass_kg > 0))
     throw deform::InputError("--mass-kg: must be finite and > 0");
@@ -73,6 +75,7 @@ void runBenchStep(const BenchStepFlags& f) {
   options.steps = f.steps;
   options.dt_s = f.dt_s;
   options.yield_limited = f.yield_limited;
+  options.threads = f.threads;
   const StepCost cost = measureStepCost(settings, options);
   const std::size_t constraints = settings->constraintCount();
   const uint32_t contact_points = cost.contact_points;
@@ -91,6 +94,7 @@ void runBenchStep(const BenchStepFlags& f) {
   r["iterations"] = f.iterations;
   r["anchored_columns"] = f.anchored_columns;
   r["yield_limited"] = f.yield_limited;
+  r["threads"] = f.threads;
   r["dt_s"] = f.dt_s;
   r["steps"] = f.steps;
   r["contact_points"] = contact_points;
@@ -98,6 +102,9 @@ void runBenchStep(const BenchStepFlags& f) {
   r["wall_us_per_step"] = median_wall_us;
   r["ns_per_constraint_iteration"] = ns_per;
   r["max_deviation_m"] = cost.max_deviation_m;
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(cost.state_hash));
+  r["state_hash"] = hash;
   if (f.peer == "bullet") {
     const baselines::PeerStepCost peer = baselines::bulletPeerStepCost(
         *settings, f.mass_kg, f.substeps, f.iterations, f.warmup, f.steps, f.dt_s);
@@ -120,8 +127,9 @@ void runBenchStep(const BenchStepFlags& f) {
               f.substeps, f.iterations, f.dt_s, contact_points);
   std::printf(
       "  median %.2f us per step (thread CPU time; wall %.2f us), %.2f ns per constraint per iteration "
-      "(%zu steps)\n",
-      median_us, median_wall_us, ns_per, f.steps);
+      "(%s, %u thread%s, %zu steps); state hash %s\n",
+      median_us, median_wall_us, ns_per, f.threads > 1 ? "wall time" : "CPU time", f.threads,
+      f.threads > 1 ? "s" : "", f.steps, hash);
   if (r.contains("peer")) {
     const auto& peer = r["peer"];
     std::printf(
@@ -154,6 +162,9 @@ void registerBenchStepCommand(CLI::App& bench) {
                  "Crush columns held at a rest place (scene key anchored_columns)");
   step->add_flag("--yield-limited", flags->yield_limited,
                  "Force-limited constraints (scene key yield_limited)");
+  step->add_option("--threads", flags->threads,
+                   "Threads sweeping the body (deform SolverParams::threads: 1, or 2 for its halves)")
+      ->capture_default_str();
   step->add_option("--peer", flags->peer, "Also run the same body in a peer engine: bullet (btSoftBody)");
   step->add_flag("--json", flags->json, "Print one JSON object");
   step->callback([flags] { runBenchStep(*flags); });

@@ -30,6 +30,7 @@ StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& sett
   params.substeps = options.substeps;
   params.iterations = options.iterations;
   params.yield_limited = options.yield_limited;
+  params.threads = options.threads;
   params.sleep_delay_s = -1;  // measure work, not sleep
   deform::DeformableBody body(settings, params);
 
@@ -55,9 +56,10 @@ StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& sett
   cost.us_per_step = median(us);
   cost.wall_us_per_step = median(wall_us);
   cost.ns_per_constraint_iteration =
-      cost.us_per_step * 1e3 /
+      (options.threads > 1 ? cost.wall_us_per_step : cost.us_per_step) * 1e3 /
       (static_cast<double>(settings->constraintCount()) * options.substeps * options.iterations);
   cost.max_deviation_m = deform::maxDeviation(*settings, body.state());
+  cost.state_hash = deform::hashState(body.state());
   return cost;
 }
 

@@ -14,6 +14,7 @@ struct StepCost {
   double ns_per_constraint_iteration = 0;
   uint32_t contact_points = 0;  ///< points against the wall in a substep
   double max_deviation_m = 0;   ///< at the end [m]
+  uint64_t state_hash = 0;      ///< deform::hashState of the body at the end
 };
 
 struct StepCostOptions {
@@ -23,9 +24,12 @@ struct StepCostOptions {
   std::size_t steps = 200;  ///< measured steps (the median is reported)
   double dt_s = 1.0 / 60;
   bool yield_limited = false;  ///< deform::SolverParams::yield_limited
+  uint32_t threads = 1;        ///< deform::SolverParams::threads
 };
 
-/// Steps a body of `settings` (sleep off) under the wall and times it.
+/// Steps a body of `settings` (sleep off) under the wall and times it. ns_per_constraint_iteration is of
+/// the thread CPU time on one thread and of the wall time on more (the CPU time of the calling thread
+/// leaves out the other's).
 StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& settings,
                          const StepCostOptions& options);
 

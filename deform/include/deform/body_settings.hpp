@@ -57,9 +57,19 @@ struct BodySettings {
   /// shell orientation constraint (removeShellRotation) [1/(kg m^2)].
   Eigen::Matrix3d shell_inverse_inertia = Eigen::Matrix3d::Zero();
 
+  /// The pair constraints are in sweep order, not the control mesh's: edges[0 .. edge_half_end[0]) join
+  /// points of one half of the body, edges[edge_half_end[0] .. edge_half_end[1]) points of the other, and
+  /// the rest cross between them; within each part, neighbours in the array share no point where they
+  /// can (deform/src/sweep_order.hpp). The same for the bends' wing points.
   std::vector<EdgeConstraint> edges;    ///< hull edges
-  std::vector<SpokeConstraint> spokes;  ///< one per control point
+  std::vector<SpokeConstraint> spokes;  ///< one per control point, in point order
   std::vector<BendConstraint> bends;    ///< one per hull edge shared by two triangles and folded enough
+  std::array<uint32_t, 2> edge_half_end{};
+  std::array<uint32_t, 2> bend_half_end{};
+  /// The spokes (columns) in sweep order: those of the points of one half, column_order[0 ..
+  /// column_half_end), then the other's.
+  std::vector<uint32_t> column_order;
+  uint32_t column_half_end = 0;
   /// The control surface's triangles, outward winding: an obstacle poking through one between its
   /// corners pushes them in (face contacts).
   std::vector<std::array<uint32_t, 3>> triangles;

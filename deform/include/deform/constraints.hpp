@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 
 namespace deform {
 
@@ -69,6 +70,40 @@ inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double w
   return c;
 }
 
+/// What a distance constraint's XPBD update takes from the step alone: alpha_tilde = compliance / h^2
+/// [1/kg] and 1 / (w_a + w_b + alpha_tilde) [kg] (0 where that sum is not positive: no update). Found
+/// once per substep length, it spares the sweep a division per constraint.
+struct DistanceFactors {
+  double alpha_tilde = 0;
+  double inverse_denominator = 0;
+};
+inline DistanceFactors distanceFactors(double wa, double wb, double compliance_m_per_N, double inv_h2) {
+  DistanceFactors f;
+  f.alpha_tilde = compliance_m_per_N * inv_h2;
+  const double denominator = wa + wb + f.alpha_tilde;
+  f.inverse_denominator = denominator > 0 ? 1.0 / denominator : 0.0;
+  return f;
+}
+
+/// projectDistance with the step's factors found beforehand (distanceFactors): the same update, with
+/// the multiplier's step a product instead of a quotient. Returns C before the projection [m].
+inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa, double wb, double rest_m,
+                              const DistanceFactors& factors, double& lambda, double lambda_min = -HUGE_VAL,
+                              double lambda_max = HUGE_VAL) {
+  const Eigen::Vector3d d = xa - xb;
+  const double length = d.norm();
+  if (length < kMinConstraintLength_m) return 0;
+  const double c = length - rest_m;
+  double next = lambda + (-c - factors.alpha_tilde * lambda) * factors.inverse_denominator;
+  if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
+  const double d_lambda = next - lambda;
+  lambda = next;
+  const Eigen::Vector3d n = d * (d_lambda / length);
+  xa += wa * n;
+  xb -= wb * n;
+  return c;
+}
+
 /// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the core at `core_m` (inverse
 /// mass `w_core` [1/kg]; 0 = kinematic): the spoke (eq. 17, 18). Returns C before the projection [m].
 inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w, double w_core,
@@ -98,13 +133,11 @@ inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w
 /// never say so of one beyond it), which spares the limit's evaluation. Returns |C| before the
 /// projection [m].
 template <typename Limit, typename Within = std::nullptr_t>
-inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w, double w_core,
-                            double alpha_tilde, Eigen::Vector3d& lambda, Limit&& lambda_limit,
-                            Within&& surely_within = nullptr) {
-  const double sum = w + w_core;
-  if (sum + alpha_tilde <= 0) return 0;
+inline void projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w,
+                          const DistanceFactors& factors, Eigen::Vector3d& lambda, Limit&& lambda_limit,
+                          Within&& surely_within = nullptr) {
   const Eigen::Vector3d c = x - target;
-  Eigen::Vector3d next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
+  Eigen::Vector3d next = lambda + (-c - factors.alpha_tilde * lambda) * factors.inverse_denominator;
   if constexpr (!std::is_same_v<std::decay_t<Limit>, std::nullptr_t>) {
     bool within = false;
     if constexpr (!std::is_same_v<std::decay_t<Within>, std::nullptr_t>) within = surely_within(next);
@@ -116,7 +149,20 @@ inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, d
   }
   x += w * (next - lambda);
   lambda = next;
-  return c.norm();
+}
+
+/// The same with the step's factors found here (distanceFactors(w, w_core, compliance, 1 / h^2) gives
+/// them once per substep length, as the sweep does). Returns |C| before the projection [m].
+template <typename Limit, typename Within = std::nullptr_t>
+inline double projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w, double w_core,
+                            double alpha_tilde, Eigen::Vector3d& lambda, Limit&& lambda_limit,
+                            Within&& surely_within = nullptr) {
+  const double sum = w + w_core;
+  if (sum + alpha_tilde <= 0) return 0;
+  const double violation = (x - target).norm();
+  projectColumn(x, target, w, DistanceFactors{alpha_tilde, 1.0 / (sum + alpha_tilde)}, lambda,
+                std::forward<Limit>(lambda_limit), std::forward<Within>(surely_within));
+  return violation;
 }
 
 /// Non-penetration of a point with an immovable obstacle, linearised as the half-space

@@ -126,6 +126,7 @@ class DeformableBody {
   StepReport endStep();
   template <bool kLimited>
   void sweepConstraints();
+  void refreshDistanceFactors();  ///< edge_factors_, bend_factors_, column_factors_ for h_s_ and the core
   /// Books a correction `dx` of point `i` by obstacle `shape` (its momentum, work and moment).
   void movedBy(uint32_t shape, uint32_t i, const Eigen::Vector3d& dx);
 
@@ -234,6 +235,10 @@ class DeformableBody {
   std::vector<Eigen::Vector3d> previous_m_;
   std::vector<double> edge_lambda_, spoke_lambda_, bend_lambda_;
   std::vector<Eigen::Vector3d> column_lambda_;
+  /// The edges', bends' and columns' (or spokes') step factors (distanceFactors) for substeps of
+  /// factors_h_s_ [s] and a core of inverse mass factors_core_per_kg_ (the columns').
+  std::vector<DistanceFactors> edge_factors_, bend_factors_, column_factors_;
+  double factors_h_s_ = 0, factors_core_per_kg_ = 0;
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ElasticBand> edge_band_, spoke_band_, bend_band_;          ///< where each stays elastic (cache)
   /// Per crush column, from its rest place (cache): the yield hardening has added [m], and whether it has

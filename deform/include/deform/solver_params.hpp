@@ -13,6 +13,11 @@ struct SolverParams {
   uint32_t substeps = 4;
   /// Gauss-Seidel sweeps over every constraint per substep. >= 1.
   uint32_t iterations = 1;
+  /// Threads that sweep this body's constraints: 1, or 2 for its two halves side by side (more are
+  /// taken as 2). The state is bit-identical for 1 and 2: the sweep visits the same constraints in the
+  /// same order within each half, and the halves share no point (BodySettings::edge_half_end). Leave it
+  /// at 1 where bodies are already stepped in parallel (scenes with several cars). >= 1.
+  uint32_t threads = 1;
   /// Viscous drag on the control points' motion relative to the chassis, per unit mass [1/s]: with no
   /// constraint acting, a speed decays as exp(-damping_per_s t) (applied exactly per substep, so it is
   /// stable for any value). 0 = undamped. >= 0.

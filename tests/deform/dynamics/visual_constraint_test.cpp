@@ -5,6 +5,8 @@
 #include <deform/builtin_meshes.hpp>
 #include <deform/deformable_body.hpp>
 
+#include <map>
+
 using namespace deform;
 using namespace dynamics_test;
 
@@ -48,10 +50,13 @@ TEST_CASE("a region may carry its own material and deviation limit", "[dynamics]
   // an edge whose wings lie wholly in the box is soft, one wholly outside it stiff.
   const ControlMesh mesh = sphereHull(42);
   std::size_t soft = 0, stiff = 0;
-  for (std::size_t k = 0; k < mesh.edges.size(); ++k) {
-    const ControlEdge& ce = mesh.edges[k];
-    const auto& e = settings->edges[k];
-    REQUIRE(e.a == ce.a);
+  // The settings hold the edges in sweep order, not the mesh's: find each by its points.
+  std::map<std::pair<uint32_t, uint32_t>, const EdgeConstraint*> by_points;
+  for (const auto& e : settings->edges) by_points[{e.a, e.b}] = &e;
+  REQUIRE(by_points.size() == mesh.edges.size());
+  for (const ControlEdge& ce : mesh.edges) {
+    REQUIRE(by_points.count({ce.a, ce.b}) == 1);
+    const auto& e = *by_points.at({ce.a, ce.b});
     auto x = [&](uint32_t p) { return settings->rest_positions_m[p].x(); };
     const bool inside = x(ce.a) >= 0.5 && x(ce.b) >= 0.5 && x(ce.left) >= 0.5 && x(ce.right) >= 0.5;
     const bool outside = x(ce.a) < 0.5 && x(ce.b) < 0.5 && x(ce.left) < 0.5 && x(ce.right) < 0.5;
