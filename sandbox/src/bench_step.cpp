@@ -36,8 +36,8 @@ struct BenchStepFlags {
   double mass_kg = 1500;
   bool anchored_columns = false;  ///< deform::BodyDescription::anchored_columns
   bool yield_limited = false;     ///< deform::SolverParams::yield_limited
-  uint32_t threads = 1;  ///< deform::SolverParams::threads
-  std::string peer;      ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
+  uint32_t threads = 1;           ///< deform::SolverParams::threads
+  std::string peer;  ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
   bool json = false;
 };
 
