@@ -1,0 +1,181 @@
+// The sweep's order (deform/src/sweep_order.hpp) and the two-thread sweep (SolverParams::threads): the
+// halves share no point, the order keeps every constraint, neighbours in the sweep rarely share a point,
+// and two threads give the bits of one.
+#include "fixtures.hpp"
+
+#include <catch2/catch.hpp>
+#include <deform/builtin_meshes.hpp>
+#include <deform/control_mesh.hpp>
+#include <deform/deformable_body.hpp>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <utility>
+
+using namespace deform;
+using namespace dynamics_test;
+
+namespace {
+
+/// Which half each point is swept in (BodySettings::column_order: the first column_half_end points).
+std::vector<int> halfOfPoint(const BodySettings& s) {
+  std::vector<int> half(s.pointCount(), -1);
+  for (std::size_t j = 0; j < s.column_order.size(); ++j)
+    half[s.spokes[s.column_order[j]].point] = j < s.column_half_end ? 0 : 1;
+  return half;
+}
+
+/// Pairs (a, b) of a constraint list, in its order.
+template <class C, class Points>
+std::vector<std::pair<uint32_t, uint32_t>> pairsOf(const std::vector<C>& list, Points points) {
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  for (const C& c : list) out.push_back(points(c));
+  return out;
+}
+
+/// Checks that pairs[0 .. end[0]) lie in half 0, pairs[end[0] .. end[1]) in half 1, the rest across.
+void checkParts(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, const std::array<uint32_t, 2>& end,
+                const std::vector<int>& half) {
+  REQUIRE(end[0] <= end[1]);
+  REQUIRE(end[1] <= pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const int a = half[pairs[k].first], b = half[pairs[k].second];
+    const int part = k < end[0] ? 0 : k < end[1] ? 1 : 2;
+    if (part < 2) {
+      REQUIRE(a == part);
+      REQUIRE(b == part);
+    } else {
+      REQUIRE(a != b);
+    }
+  }
+}
+
+/// Fraction of neighbours in a list that share a point.
+template <class Pairs>
+double sharedNeighbours(const Pairs& pairs) {
+  std::size_t shared = 0;
+  for (std::size_t k = 1; k < pairs.size(); ++k) {
+    const auto& [a, b] = pairs[k - 1];
+    const auto& [c, d] = pairs[k];
+    shared += (a == c || a == d || b == c || b == d) ? 1 : 0;
+  }
+  return static_cast<double>(shared) / static_cast<double>(pairs.size() - 1);
+}
+
+StepInputs pressed(const BodySettings& s, int step) {
+  double front_m = -1e300;
+  for (const auto& p : s.rest_positions_m) front_m = std::max(front_m, p.x());
+  StepInputs in;
+  // A post driven into the front, off the centreline, and a wall behind it.
+  const double reach = front_m + 0.2 - 0.004 * std::min(step, 60);
+  CylinderShape post;
+  post.a_m = {reach, 0.15, s.core_m.z() - 1.0};
+  post.b_m = {reach, 0.15, s.core_m.z() + 1.0};
+  post.radius_m = 0.08;
+  in.contacts.push_back(post);
+  in.contacts.push_back(HalfSpaceShape{{-1, 0, 0}, -(front_m + 0.05 - 0.002 * std::min(step, 60))});
+  in.chassis.acceleration_mps2 = {-20, 1, 0};
+  in.chassis.gravity_mps2 = {0, 0, -9.81};
+  if (step % 9 == 0) in.impulses.push_back({static_cast<uint32_t>(step % 50), Eigen::Vector3d(-30, 10, 5)});
+  return in;
+}
+
+}  // namespace
+
+TEST_CASE("the sweep keeps every constraint, its halves share no point, and neighbours rarely share one",
+          "[dynamics]") {
+  const ControlMesh mesh = sedanControlMesh(1000);
+  BodyDescription d;
+  d.anchored_columns = true;
+  const auto settings = makeSettings(mesh, 1500.0, d);
+  const BodySettings& s = *settings;
+  const std::vector<int> half = halfOfPoint(s);
+  // Every point in one half; the halves hold n / 2 and n - n / 2 points.
+  REQUIRE(std::count(half.begin(), half.end(), -1) == 0);
+  CHECK(s.column_half_end == s.pointCount() / 2);
+  std::vector<uint32_t> columns = s.column_order;
+  std::sort(columns.begin(), columns.end());
+  for (uint32_t k = 0; k < columns.size(); ++k) REQUIRE(columns[k] == k);
+
+  const auto edges = pairsOf(s.edges, [](const EdgeConstraint& e) { return std::pair{e.a, e.b}; });
+  const auto bends = pairsOf(s.bends, [](const BendConstraint& b) { return std::pair{b.left, b.right}; });
+  checkParts(edges, s.edge_half_end, half);
+  checkParts(bends, s.bend_half_end, half);
+  // The same edges as the mesh's, once each, and the rest lengths moved with them.
+  std::set<std::pair<uint32_t, uint32_t>> swept(edges.begin(), edges.end()), meshed;
+  for (const ControlEdge& e : mesh.edges) meshed.insert({e.a, e.b});
+  CHECK(swept == meshed);
+  CHECK(edges.size() == mesh.edges.size());
+  for (std::size_t k = 0; k < s.edges.size(); ++k)
+    REQUIRE(s.edge_rest_m[k] ==
+            Approx((s.rest_positions_m[s.edges[k].a] - s.rest_positions_m[s.edges[k].b]).norm()));
+  // What crosses the cut is a ring around the body, a few per cent of the edges.
+  const double across =
+      static_cast<double>(s.edges.size() - s.edge_half_end[1]) / static_cast<double>(s.edges.size());
+  std::vector<std::pair<uint32_t, uint32_t>> mesh_order;
+  for (const ControlEdge& e : mesh.edges) mesh_order.push_back({e.a, e.b});
+  WARN("1,000-point sedan: " << 100 * across << " % of the edges cross the cut; neighbours sharing a point: "
+                             << 100 * sharedNeighbours(edges) << " % in the sweep, "
+                             << 100 * sharedNeighbours(mesh_order) << " % in the mesh's order");
+  CHECK(across < 0.05);
+  // In the mesh's order most neighbours share a point (a chain of dependent updates); in the sweep's,
+  // only where a window's colour changes.
+  CHECK(sharedNeighbours(mesh_order) > 0.3);
+  CHECK(sharedNeighbours(edges) < 0.15);
+}
+
+TEST_CASE("control points are numbered along the body's longest side", "[dynamics]") {
+  const ControlMesh mesh = sedanControlMesh(500);
+  for (std::size_t i = 1; i < mesh.points_m.size(); ++i)
+    REQUIRE(mesh.points_m[i - 1].x() <= mesh.points_m[i].x());
+  // The wings still lie on either side of each edge: the triangle a -> b -> left is one of the mesh's.
+  std::set<std::array<uint32_t, 3>> triangles;
+  for (auto t : mesh.triangles) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles.insert(t);
+  }
+  for (const ControlEdge& e : mesh.edges) {
+    std::array<uint32_t, 3> t{e.a, e.b, e.left};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    REQUIRE(triangles.count(t) == 1);
+  }
+}
+
+TEST_CASE("two threads sweep a body to the same bits as one", "[dynamics]") {
+  for (const bool anchored : {true, false}) {
+    BodyDescription d;
+    d.anchored_columns = anchored;
+    const auto settings = makeSettings(sedanControlMesh(500), 1500.0, d);
+    SolverParams one;
+    one.yield_limited = anchored;
+    one.iterations = 2;
+    SolverParams two = one;
+    two.threads = 2;
+    DeformableBody a(settings, one), b(settings, two);
+    for (int k = 0; k < 90; ++k) {
+      a.step(pressed(*settings, k), 1.0 / 60);
+      b.step(pressed(*settings, k), 1.0 / 60);
+    }
+    INFO((anchored ? "anchored, force-limited" : "spokes, unlimited"));
+    CHECK(a.state().plastic_work_J > 100);
+    CHECK(hashState(a.state()) == hashState(b.state()));
+  }
+}
+
+TEST_CASE("the step factors give the quotient's update to within rounding", "[dynamics]") {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Eigen::Vector3d a(u(random), u(random), u(random)), b(u(random), u(random), u(random));
+    const double wa = 1 + u(random), wb = 1 + u(random), compliance = 1e-6 * (1.5 + u(random));
+    const double inv_h2 = 1.0 / (1.0 / 240 * 1.0 / 240), rest = (a - b).norm() * (1 + 0.2 * u(random));
+    Eigen::Vector3d xa = a, xb = b, ya = a, yb = b;
+    double lambda = 1e-6 * u(random), mu = lambda;
+    projectDistance(xa, xb, wa, wb, rest, compliance * inv_h2, lambda, -1e-4, 1e-4);
+    projectDistance(ya, yb, wa, wb, rest, distanceFactors(wa, wb, compliance, inv_h2), mu, -1e-4, 1e-4);
+    REQUIRE((xa - ya).norm() <= 1e-15 * (1 + a.norm()));
+    REQUIRE((xb - yb).norm() <= 1e-15 * (1 + b.norm()));
+    REQUIRE(std::abs(lambda - mu) <= 1e-14 * std::abs(lambda) + 1e-300);
+  }
+}
