@@ -124,7 +124,8 @@ void DeformableBody::sweepConstraints() {
   Reaction reaction[2];
   const Eigen::Vector3d shift = core - settings.core_m;
   const uint32_t* column_order = settings.column_order.data();
-  auto sweepColumns = [&](std::size_t begin, std::size_t end, Reaction& out) {
+  auto sweepColumns = [&](std::size_t begin, std::size_t end, Reaction& result) {
+    Reaction out;  // a local, stored once: the two halves' sums share a cache line
     for (std::size_t j = begin; anchored && j < end; ++j) {
       // Crush columns: each holds its point at its rest place, which moves with the core.
       const std::size_t k = column_order[j];
@@ -166,6 +167,7 @@ void DeformableBody::sweepConstraints() {
       out.pull += pull;
       out.twist += anchors[k].cross(pull);
     }
+    result = out;
   };
   const auto& edge_end = settings.edge_half_end;
   const auto& bend_end = settings.bend_half_end;
@@ -190,14 +192,17 @@ void DeformableBody::sweepConstraints() {
   if (params_.threads > 1) {
 #pragma omp parallel num_threads(2)
     {
-      const int half = omp_get_thread_num() == 0 ? 0 : 1;
-      edgesOf(half);
+      // One thread per half; one alone (if the runtime gives only one) takes both.
+      const int first = omp_get_thread_num(), team = omp_get_num_threads();
+      for (int half = first; half < 2; half += team) edgesOf(half);
 #pragma omp barrier
 #pragma omp single
       edgesOf(2);
       // No barrier between a half's columns and its bends: the other half's touch none of its points.
-      columnsOf(half);
-      bendsOf(half);
+      for (int half = first; half < 2; half += team) {
+        columnsOf(half);
+        bendsOf(half);
+      }
 #pragma omp barrier
 #pragma omp single
       bendsOf(2);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "body_halves.hpp"
+
 namespace deform {
 
 void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vector3d& core,
@@ -102,7 +104,6 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   const BodySettings& settings = *settings_;
   const auto& x = state_.positions_m;
   const auto& laws = settings.plastic_laws;
-  double work_J = 0;
   // One constraint: new rest length by the return map; the plastic work is the force the constraint
   // carried times the flow |dL| (the 1D sigma_y d eps_p). That force is what the solver applied this
   // substep, |lambda| / h^2 (XPBD eq. 18: a stiff constraint the iterations did not converge carries less
@@ -113,7 +114,7 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   // comparisons; the square root and the return map only for the rest, with the same result as always.
   auto flow = [&](double length_m2, ElasticBand& band, double& rest, double original,
                   const YieldLimits& yield, uint32_t material, double compliance, double lambda,
-                  YieldForce& carries) {
+                  YieldForce& carries, double& work_J) {
     if (band.holds(length_m2)) return;
     const double length = std::sqrt(length_m2);
     const double moved = plasticRestLength(length, rest, original, yield, laws[material]);
@@ -127,45 +128,57 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
     rest = moved;
     band = elasticBand(moved, original, yield, laws[material]);
   };
-  for (std::size_t k = 0; k < settings.edges.size(); ++k) {
-    const EdgeConstraint& c = settings.edges[k];
-    flow((x[c.a] - x[c.b]).squaredNorm(), edge_band_[k], state_.edge_rest_m[k], settings.edge_rest_m[k],
-         settings.edge_yield[k], c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k]);
-  }
   const Eigen::Vector3d shift = core_m - settings.core_m;
-  if (settings.anchored_columns) {
-    for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
-      const SpokeConstraint& c = settings.spokes[k];
-      Eigen::Vector3d& rest = state_.column_rest_m[k];
-      const Eigen::Vector3d local = x[c.point] - shift;
-      // Nearly every column is elastic: skip those without a square root (columnSurelyElastic).
-      if (columnSurelyElastic(settings.spoke_normal[k], local - rest, settings.spoke_yield[k])) continue;
-      const Eigen::Vector3d moved =
-          plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
-                            settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
-      if (moved == rest) continue;
-      if (c.compliance_m_per_N > 0) {
-        const double force_N =
-            std::min(column_lambda_[k].norm() * inv_h2, (local - moved).norm() / c.compliance_m_per_N);
-        work_J += force_N * (moved - rest).norm();
+  // Each constraint flows on its own: the halves of each kind side by side (SolverParams::threads),
+  // each with its own sum of the work.
+  double work_of_half[2] = {0, 0};
+  forEachHalf(params_.threads, [&](int half) {
+    double work_J = 0;  // a local, stored once: the two halves' sums share a cache line
+    const auto [edges_begin, edges_end] = halfOf(settings.edges.size(), half);
+    for (std::size_t k = edges_begin; k < edges_end; ++k) {
+      const EdgeConstraint& c = settings.edges[k];
+      flow((x[c.a] - x[c.b]).squaredNorm(), edge_band_[k], state_.edge_rest_m[k], settings.edge_rest_m[k],
+           settings.edge_yield[k], c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k],
+           work_J);
+    }
+    const auto [spokes_begin, spokes_end] = halfOf(settings.spokes.size(), half);
+    if (settings.anchored_columns) {
+      for (std::size_t k = spokes_begin; k < spokes_end; ++k) {
+        const SpokeConstraint& c = settings.spokes[k];
+        Eigen::Vector3d& rest = state_.column_rest_m[k];
+        const Eigen::Vector3d local = x[c.point] - shift;
+        // Nearly every column is elastic: skip those without a square root (columnSurelyElastic).
+        if (columnSurelyElastic(settings.spoke_normal[k], local - rest, settings.spoke_yield[k])) continue;
+        const Eigen::Vector3d moved =
+            plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
+                              settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
+        if (moved == rest) continue;
+        if (c.compliance_m_per_N > 0) {
+          const double force_N =
+              std::min(column_lambda_[k].norm() * inv_h2, (local - moved).norm() / c.compliance_m_per_N);
+          work_J += force_N * (moved - rest).norm();
+        }
+        rest = moved;
+        refreshColumn(k);
       }
-      rest = moved;
-      refreshColumn(k);
+    } else {
+      for (std::size_t k = spokes_begin; k < spokes_end; ++k) {
+        const SpokeConstraint& c = settings.spokes[k];
+        flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).squaredNorm(), spoke_band_[k],
+             state_.spoke_rest_m[k], settings.spoke_rest_m[k], settings.spoke_yield[k], c.material,
+             c.compliance_m_per_N, spoke_lambda_[k], spoke_yield_N_[k], work_J);
+      }
     }
-  } else {
-    for (std::size_t k = 0; k < settings.spokes.size(); ++k) {
-      const SpokeConstraint& c = settings.spokes[k];
-      flow((x[c.point] - core_m - settings.spoke_anchor_m[k]).squaredNorm(), spoke_band_[k],
-           state_.spoke_rest_m[k], settings.spoke_rest_m[k], settings.spoke_yield[k], c.material,
-           c.compliance_m_per_N, spoke_lambda_[k], spoke_yield_N_[k]);
+    const auto [bends_begin, bends_end] = halfOf(settings.bends.size(), half);
+    for (std::size_t k = bends_begin; k < bends_end; ++k) {
+      const BendConstraint& c = settings.bends[k];
+      flow((x[c.left] - x[c.right]).squaredNorm(), bend_band_[k], state_.bend_rest_m[k],
+           settings.bend_rest_m[k], settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k],
+           bend_yield_N_[k], work_J);
     }
-  }
-  for (std::size_t k = 0; k < settings.bends.size(); ++k) {
-    const BendConstraint& c = settings.bends[k];
-    flow((x[c.left] - x[c.right]).squaredNorm(), bend_band_[k], state_.bend_rest_m[k],
-         settings.bend_rest_m[k], settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k],
-         bend_yield_N_[k]);
-  }
+    work_of_half[half] = work_J;
+  });
+  const double work_J = work_of_half[0] + work_of_half[1];
   state_.plastic_work_J += work_J;
   report.plastic_work_J += work_J;
 }

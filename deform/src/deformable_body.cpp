@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "body_halves.hpp"
+
 namespace deform {
 namespace {
 
@@ -320,29 +322,48 @@ void DeformableBody::beginSubstep(uint32_t k) {
   const double decay = drag_split_ > 1 ? 1.0 + (full_decay - 1.0) / drag_split_ : full_decay;
   const bool inertial = scale > 0 && (load_mps2_.squaredNorm() > 0 || omega_radps_.squaredNorm() > 0 ||
                                       alpha_radps2_.squaredNorm() > 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    previous_m_[i] = x[i];
-    // Drag first, then the load: at rest (v = 0) the full load acts, so damping leaves the static
-    // equilibrium where the compliance alone puts it.
-    const Eigen::Vector3d relative = v[i] - core_velocity_mps_;
-    Eigen::Vector3d vi = core_velocity_mps_ + relative * decay;
-    report.damping_loss_J += 0.5 * m[i] * relative.squaredNorm() * (1.0 - decay * decay);
-    to_core_Ns += m[i] * (v[i] - vi);
-    Eigen::Vector3d inertial_mps2{0, 0, 0};
-    if (inertial) {
-      const Eigen::Vector3d r = x[i] - core;
-      inertial_mps2 = scale * (load_mps2_ - alpha_radps2_.cross(r) -
-                               omega_radps_.cross(omega_radps_.cross(r)) - 2.0 * omega_radps_.cross(vi));
-      vi += h * inertial_mps2;
+  // The two halves of the points side by side (SolverParams::threads), each with its own sums.
+  struct PredictionSums {
+    double damping_loss_J = 0, inertial_work_J = 0;
+    Eigen::Vector3d to_core_Ns{0, 0, 0};
+  };
+  PredictionSums sums[2];
+  const Eigen::Vector3d core_velocity_mps = core_velocity_mps_, load_mps2 = load_mps2_,
+                        omega_radps = omega_radps_, alpha_radps2 = alpha_radps2_;
+  Eigen::Vector3d* previous = previous_m_.data();
+  forEachHalf(params_.threads, [&](int half) {
+    PredictionSums sum;  // a local, stored once: the two halves' sums share a cache line
+    const auto [begin, end] = halfOf(n, half);
+    for (std::size_t i = begin; i < end; ++i) {
+      previous[i] = x[i];
+      // Drag first, then the load: at rest (v = 0) the full load acts, so damping leaves the static
+      // equilibrium where the compliance alone puts it.
+      const Eigen::Vector3d relative = v[i] - core_velocity_mps;
+      Eigen::Vector3d vi = core_velocity_mps + relative * decay;
+      sum.damping_loss_J += 0.5 * m[i] * relative.squaredNorm() * (1.0 - decay * decay);
+      sum.to_core_Ns += m[i] * (v[i] - vi);
+      Eigen::Vector3d inertial_mps2{0, 0, 0};
+      if (inertial) {
+        const Eigen::Vector3d r = x[i] - core;
+        inertial_mps2 = scale * (load_mps2 - alpha_radps2.cross(r) - omega_radps.cross(omega_radps.cross(r)) -
+                                 2.0 * omega_radps.cross(vi));
+        vi += h * inertial_mps2;
+      }
+      Eigen::Vector3d travel = h * vi;
+      // Numeric guard: a point can end a substep at most 2 d_max from where it began (visual constraint),
+      // so a larger predicted travel (an enormous impulse) is shortened to that before the solve.
+      const double cap = 2.0 * settings.max_deviation_m[i];
+      const double travel2 = travel.squaredNorm();
+      if (travel2 > cap * cap) travel *= cap / std::sqrt(travel2);
+      if (inertial) sum.inertial_work_J += m[i] * inertial_mps2.dot(travel - h * core_velocity_mps);
+      x[i] += travel;
     }
-    Eigen::Vector3d travel = h * vi;
-    // Numeric guard: a point can end a substep at most 2 d_max from where it began (visual constraint),
-    // so a larger predicted travel (an enormous impulse) is shortened to that before the solve.
-    const double cap = 2.0 * settings.max_deviation_m[i];
-    const double travel2 = travel.squaredNorm();
-    if (travel2 > cap * cap) travel *= cap / std::sqrt(travel2);
-    if (inertial) report.inertial_work_J += m[i] * inertial_mps2.dot(travel - h * core_velocity_mps_);
-    x[i] += travel;
+    sums[half] = sum;
+  });
+  for (const PredictionSums& sum : sums) {
+    report.damping_loss_J += sum.damping_loss_J;
+    report.inertial_work_J += sum.inertial_work_J;
+    to_core_Ns += sum.to_core_Ns;
   }
   core_velocity_mps_ += w_core * to_core_Ns;
   sub_.core_start = core;
@@ -368,9 +389,27 @@ void DeformableBody::settleSubstep() {
   // reaction is the opposite of the shell's angular impulse; and the spokes pull at their anchors, off
   // the core: the moment of their reaction on it.
   const Eigen::Vector3d shift = core - settings.core_m;
-  const Eigen::Vector3d shell_defect = removeShellRotation(
-      state_.positions_m.data(), settings.rest_positions_m.data(), settings.mass_kg.data(),
-      settings.pointCount(), settings.core_m, settings.shell_inverse_inertia, shift, tie_push);
+  // The shell orientation constraint (shellRotation, turnShell), the points in two halves
+  // (SolverParams::threads), each half's sums its own.
+  Eigen::Vector3d* x = state_.positions_m.data();
+  const Eigen::Vector3d* x0 = settings.rest_positions_m.data();
+  const double* m = settings.mass_kg.data();
+  const std::size_t n = settings.pointCount();
+  Eigen::Vector3d moment[2], given[2], pushed[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  forEachHalf(params_.threads, [&](int half) {
+    const auto [begin, end] = halfOf(n, half);
+    moment[half] = shellRotation(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift);
+  });
+  const Eigen::Vector3d mu = -(settings.shell_inverse_inertia * (moment[0] + moment[1]));
+  forEachHalf(params_.threads, [&](int half) {
+    const auto [begin, end] = halfOf(n, half);
+    Eigen::Vector3d push{0, 0, 0};  // a local, stored once (as the prediction's sums)
+    given[half] = turnShell(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift, mu, push);
+    pushed[half] = push;
+  });
+  tie_push += pushed[0];
+  tie_push += pushed[1];
+  const Eigen::Vector3d shell_defect = -(given[0] + given[1]);
   report_.core_angular_impulse_Nms += (shell_defect - sub_.spoke_twist) * inv_h;
 
   // Visual constraint, the last projection of the substep (Kenwright 2015, "Visual Constraints").
@@ -389,7 +428,11 @@ void DeformableBody::endSubstep() {
   const double inv_h = 1.0 / h_s_;
   StepReport& report = report_;
   // Velocities from positions (Verlet style; XPBD Algorithm 1, line 16).
-  for (std::size_t i = 0; i < n; ++i) v[i] = (x[i] - previous_m_[i]) * inv_h;
+  const Eigen::Vector3d* previous = previous_m_.data();
+  forEachHalf(params_.threads, [&](int half) {
+    const auto [begin, end] = halfOf(n, half);
+    for (std::size_t i = begin; i < end; ++i) v[i] = (x[i] - previous[i]) * inv_h;
+  });
   report.contact_work_J += sub_.contact_work_x_h * inv_h;
   report.obstacle_work_J += sub_.obstacle_work_x_h * inv_h;
   report.contact_moment_Nms += sub_.contact_moment_x_h * inv_h;

@@ -54,7 +54,7 @@ struct BodySettings {
   double core_mass_kg = 0;                        ///< the core's share (infinite in the solver) [kg]
   std::vector<double> max_deviation_m;            ///< visual-constraint radius per point [m]
   /// Inverse of the shell's inertia about the core, sum m (|r|^2 I - r r^T) with r = x0 - core, for the
-  /// shell orientation constraint (removeShellRotation) [1/(kg m^2)].
+  /// shell orientation constraint (shellRotation, turnShell) [1/(kg m^2)].
   Eigen::Matrix3d shell_inverse_inertia = Eigen::Matrix3d::Zero();
 
   /// The pair constraints are in sweep order, not the control mesh's: edges[0 .. edge_half_end[0]) join

@@ -87,9 +87,10 @@ inline DistanceFactors distanceFactors(double wa, double wb, double compliance_m
 
 /// projectDistance with the step's factors found beforehand (distanceFactors): the same update, with
 /// the multiplier's step a product instead of a quotient. Returns C before the projection [m].
-inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa, double wb, double rest_m,
-                              const DistanceFactors& factors, double& lambda, double lambda_min = -HUGE_VAL,
-                              double lambda_max = HUGE_VAL) {
+[[gnu::always_inline]] inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa,
+                                                     double wb, double rest_m, const DistanceFactors& factors,
+                                                     double& lambda, double lambda_min = -HUGE_VAL,
+                                                     double lambda_max = HUGE_VAL) {
   const Eigen::Vector3d d = xa - xb;
   const double length = d.norm();
   if (length < kMinConstraintLength_m) return 0;
@@ -133,9 +134,9 @@ inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w
 /// never say so of one beyond it), which spares the limit's evaluation. Returns |C| before the
 /// projection [m].
 template <typename Limit, typename Within = std::nullptr_t>
-inline void projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w,
-                          const DistanceFactors& factors, Eigen::Vector3d& lambda, Limit&& lambda_limit,
-                          Within&& surely_within = nullptr) {
+[[gnu::always_inline]] inline void projectColumn(Eigen::Vector3d& x, const Eigen::Vector3d& target, double w,
+                                                 const DistanceFactors& factors, Eigen::Vector3d& lambda,
+                                                 Limit&& lambda_limit, Within&& surely_within = nullptr) {
   const Eigen::Vector3d c = x - target;
   Eigen::Vector3d next = lambda + (-c - factors.alpha_tilde * lambda) * factors.inverse_denominator;
   if constexpr (!std::is_same_v<std::decay_t<Limit>, std::nullptr_t>) {
@@ -222,21 +223,30 @@ inline bool projectVisual(Eigen::Vector3d& x, const Eigen::Vector3d& x0, double 
 /// bolted to its chassis, so this global constraint ties the shell's mean rotation to the chassis:
 ///   G(x) = sum_i m_i r_i x (x_i - x0_i) = 0,  r_i = x0_i - core
 /// (linear in x, so one PBD projection, d_x_i = mu x r_i with A mu = -G, A = sum_i m_i (|r_i|^2 I - r_i
-/// r_i^T) the shell's inertia about the core, meets it exactly). `inverse_inertia` is A^-1. A dent,
-/// being radial, has no rotation and is left alone. `shift_m` is how far the core (and the rest shape
-/// with it) has moved from `core_m`. Returns minus the angular momentum (x h) the projection gave the
-/// points about the core, -sum_i m_i (x_i - core) x d_x_i [kg m^2]: the core's reaction. That is -A mu = G
+/// r_i^T) the shell's inertia about the core, meets it exactly). A dent, being radial, has no rotation
+/// and is left alone. `shift_m` is how far the core (and the rest shape with it) has moved from `core_m`.
+/// The core's reaction is minus the angular momentum (x h) the projection gave the points about the core,
+/// -sum_i m_i (x_i - core) x d_x_i [kg m^2]. That is -A mu = G
 /// only while x = x0; a crushed shell (front 0.75 m in) moved by mu x r_i at levers x_i - core takes a
 /// different moment, and reporting G made the body a torque on itself (repeated_impacts: ~6 kN m of yaw
-/// while driving straight, 22 kJ created). Adds sum_i m_i d_x_i to `push` [kg m].
-inline Eigen::Vector3d removeShellRotation(Eigen::Vector3d* x, const Eigen::Vector3d* x0,
-                                           const double* mass_kg, std::size_t n,
-                                           const Eigen::Vector3d& core_m,
-                                           const Eigen::Matrix3d& inverse_inertia,
-                                           const Eigen::Vector3d& shift_m, Eigen::Vector3d& push) {
+/// while driving straight, 22 kJ created). In two functions, so that the shell can be taken in parts
+/// (SolverParams::threads): shellRotation sums G, turnShell moves the points by mu = -A^-1 G, adds
+/// sum_i m_i d_x_i to `push` [kg m] and returns sum_i m_i (x_i - core) x d_x_i.
+///
+/// G over the points [0, n) of the arrays given (the whole shell's is the sum over its parts) ...
+inline Eigen::Vector3d shellRotation(const Eigen::Vector3d* x, const Eigen::Vector3d* x0,
+                                     const double* mass_kg, std::size_t n, const Eigen::Vector3d& core_m,
+                                     const Eigen::Vector3d& shift_m) {
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n; ++i) g += mass_kg[i] * (x0[i] - core_m).cross(x[i] - shift_m - x0[i]);
-  const Eigen::Vector3d mu = -(inverse_inertia * g);
+  return g;
+}
+
+/// ... and the projection d_x_i = mu x r_i of those points, with mu = -A^-1 G of the whole shell: adds
+/// their share of sum_i m_i d_x_i to `push` and returns their share of the angular momentum given.
+inline Eigen::Vector3d turnShell(Eigen::Vector3d* x, const Eigen::Vector3d* x0, const double* mass_kg,
+                                 std::size_t n, const Eigen::Vector3d& core_m, const Eigen::Vector3d& shift_m,
+                                 const Eigen::Vector3d& mu, Eigen::Vector3d& push) {
   Eigen::Vector3d given{0, 0, 0};
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d dx = mu.cross(x0[i] - core_m);
@@ -244,7 +254,7 @@ inline Eigen::Vector3d removeShellRotation(Eigen::Vector3d* x, const Eigen::Vect
     x[i] += dx;
     push += mass_kg[i] * dx;
   }
-  return -given;
+  return given;
 }
 
 /// How far one constraint may be stretched or shortened elastically before its rest length flows [m]:
