@@ -10,11 +10,17 @@
 
 namespace deform {
 
-/// Calls fn(0) and fn(1), on two OpenMP threads when `threads` > 1 (if the runtime gives fewer, one
+/// Whether a body's passes run on two threads: asked for, and not already inside a parallel region
+/// (bodies stepped side by side, each on a thread of its own, do not nest a team each).
+inline bool sweepsOnTwoThreads(uint32_t threads) {
+  return threads > 1 && !omp_in_parallel();
+}
+
+/// Calls fn(0) and fn(1), on two OpenMP threads when sweepsOnTwoThreads (if the runtime gives fewer, one
 /// thread takes both).
 template <class Fn>
 void forEachHalf(uint32_t threads, Fn&& fn) {
-  if (threads > 1) {
+  if (sweepsOnTwoThreads(threads)) {
 #pragma omp parallel num_threads(2)
     for (int half = omp_get_thread_num(); half < 2; half += omp_get_num_threads()) fn(half);
   } else {

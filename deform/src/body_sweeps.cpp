@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "body_halves.hpp"
+
 namespace deform {
 
 void DeformableBody::refreshDistanceFactors() {
@@ -189,7 +191,7 @@ void DeformableBody::sweepConstraints() {
     sweepColumns(half == 0 ? 0 : column_half, half == 0 ? column_half : spoke_count,
                  reaction[half == 0 ? 0 : 1]);
   };
-  if (params_.threads > 1) {
+  if (sweepsOnTwoThreads(params_.threads)) {
 #pragma omp parallel num_threads(2)
     {
       // One thread per half; one alone (if the runtime gives only one) takes both.

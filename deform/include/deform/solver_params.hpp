@@ -13,10 +13,13 @@ struct SolverParams {
   uint32_t substeps = 4;
   /// Gauss-Seidel sweeps over every constraint per substep. >= 1.
   uint32_t iterations = 1;
-  /// Threads that sweep this body's constraints: 1, or 2 for its two halves side by side (more are
-  /// taken as 2). The state is bit-identical for 1 and 2: the sweep visits the same constraints in the
-  /// same order within each half, and the halves share no point (BodySettings::edge_half_end). Leave it
-  /// at 1 where bodies are already stepped in parallel (scenes with several cars). >= 1.
+  /// Threads that step this body: 1, or 2 for its two halves side by side (OpenMP; more are taken as
+  /// 2): the sweep (BodySettings::edge_half_end), the prediction, plasticity, the shell's orientation
+  /// and the velocities. The state is bit-identical for 1 and 2: each half visits the same items in the
+  /// same order and keeps its own sums, added half 0 first. Inside a parallel region (bodies stepped side
+  /// by side) the body runs on its caller's thread. Worth it only with cores to spare: OpenMP's threads
+  /// wait by spinning, and two processes each sweeping on two threads of a 2-core machine ran 10-100x
+  /// slower (the scenes keep 1 and spread their cars over the threads instead). >= 1.
   uint32_t threads = 1;
   /// Viscous drag on the control points' motion relative to the chassis, per unit mass [1/s]: with no
   /// constraint acting, a speed decays as exp(-damping_per_s t) (applied exactly per substep, so it is
