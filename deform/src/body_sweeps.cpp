@@ -70,8 +70,6 @@ void DeformableBody::sweepConstraints() {
   const DistanceFactors* column_factors = column_factors_.data();
   const double w_core = core_inverse_mass_per_kg_;
   const double h = h_s_;
-  const double inv_h = 1.0 / h;
-  const double inv_h2 = inv_h * inv_h;
   const double h2 = h * h;
   const std::size_t spoke_count = settings.spokes.size();
   const EdgeConstraint* edges = settings.edges.data();
@@ -161,10 +159,9 @@ void DeformableBody::sweepConstraints() {
       const SpokeConstraint& c = spokes[k];
       const Eigen::Vector3d before = x[c.point];
       Eigen::Vector3d anchor = core + anchors[k];
-      projectSpoke(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k],
-                   c.compliance_m_per_N * inv_h2, spoke_lambda[k],
-                   kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
-                   kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
+      projectDistance(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k], column_factors[k],
+                      spoke_lambda[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+                      kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
       const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
       out.pull += pull;
       out.twist += anchors[k].cross(pull);

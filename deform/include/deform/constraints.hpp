@@ -45,31 +45,6 @@ struct BendConstraint {
 /// Below this length [m] a distance constraint has no direction and is skipped (numeric guard).
 inline constexpr double kMinConstraintLength_m = 1e-12;
 
-/// XPBD distance constraint C = |x_a - x_b| - rest (eq. 17, 18), Gauss-Seidel: moves `xa` and `xb`
-/// by their inverse masses [1/kg] and accumulates the multiplier `lambda` [N s^2]. `alpha_tilde` is
-/// compliance / h^2 [1/kg]. Returns the constraint value C before the projection [m].
-/// A yielding constraint carries no more than its yield force: `lambda` stays within [lambda_min,
-/// lambda_max] (tension is negative: -F_stretch h^2 .. F_shorten h^2), and what the clamp leaves of C is
-/// plastic flow for the substep's return map (a force-limited constraint, like a motor's maximum impulse).
-inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa, double wb, double rest_m,
-                              double alpha_tilde, double& lambda, double lambda_min = -HUGE_VAL,
-                              double lambda_max = HUGE_VAL) {
-  const Eigen::Vector3d d = xa - xb;
-  const double length = d.norm();
-  const double w = wa + wb;
-  if (length < kMinConstraintLength_m || w + alpha_tilde <= 0) return 0;
-  const double c = length - rest_m;
-  double next = lambda + (-c - alpha_tilde * lambda) / (w + alpha_tilde);
-  // Unbounded (the default) folds away when inlined with constant bounds: the plain XPBD update.
-  if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
-  const double d_lambda = next - lambda;
-  lambda = next;
-  const Eigen::Vector3d n = d * (d_lambda / length);  // grad_xa C * d_lambda
-  xa += wa * n;
-  xb -= wb * n;
-  return c;
-}
-
 /// What a distance constraint's XPBD update takes from the step alone: alpha_tilde = compliance / h^2
 /// [1/kg] and 1 / (w_a + w_b + alpha_tilde) [kg] (0 where that sum is not positive: no update). Found
 /// once per substep length, it spares the sweep a division per constraint.
@@ -85,8 +60,14 @@ inline DistanceFactors distanceFactors(double wa, double wb, double compliance_m
   return f;
 }
 
-/// projectDistance with the step's factors found beforehand (distanceFactors): the same update, with
-/// the multiplier's step a product instead of a quotient. Returns C before the projection [m].
+/// XPBD distance constraint C = |x_a - x_b| - rest (eq. 17, 18), Gauss-Seidel: moves `xa` and `xb`
+/// by their inverse masses [1/kg] and accumulates the multiplier `lambda` [N s^2], with the step's
+/// factors found beforehand (distanceFactors): the multiplier's step (-C - alpha~ lambda) / (w_a + w_b +
+/// alpha~) is a product, not a quotient. `xb` may be the core's place (a spoke: w_b the core's inverse
+/// mass, 0 = kinematic). Returns C before the projection [m].
+/// A yielding constraint carries no more than its yield force: `lambda` stays within [lambda_min,
+/// lambda_max] (tension is negative: -F_stretch h^2 .. F_shorten h^2), and what the clamp leaves of C is
+/// plastic flow for the substep's return map (a force-limited constraint, like a motor's maximum impulse).
 [[gnu::always_inline]] inline double projectDistance(Eigen::Vector3d& xa, Eigen::Vector3d& xb, double wa,
                                                      double wb, double rest_m, const DistanceFactors& factors,
                                                      double& lambda, double lambda_min = -HUGE_VAL,
@@ -96,32 +77,13 @@ inline DistanceFactors distanceFactors(double wa, double wb, double compliance_m
   if (length < kMinConstraintLength_m) return 0;
   const double c = length - rest_m;
   double next = lambda + (-c - factors.alpha_tilde * lambda) * factors.inverse_denominator;
+  // Unbounded (the default) folds away when inlined with constant bounds: the plain XPBD update.
   if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
   const double d_lambda = next - lambda;
   lambda = next;
-  const Eigen::Vector3d n = d * (d_lambda / length);
+  const Eigen::Vector3d n = d * (d_lambda / length);  // grad_xa C * d_lambda
   xa += wa * n;
   xb -= wb * n;
-  return c;
-}
-
-/// XPBD distance from a control point `x` (inverse mass `w` [1/kg]) to the core at `core_m` (inverse
-/// mass `w_core` [1/kg]; 0 = kinematic): the spoke (eq. 17, 18). Returns C before the projection [m].
-inline double projectSpoke(Eigen::Vector3d& x, Eigen::Vector3d& core_m, double w, double w_core,
-                           double rest_m, double alpha_tilde, double& lambda, double lambda_min = -HUGE_VAL,
-                           double lambda_max = HUGE_VAL) {
-  const Eigen::Vector3d d = x - core_m;
-  const double length = d.norm();
-  const double sum = w + w_core;
-  if (length < kMinConstraintLength_m || sum + alpha_tilde <= 0) return 0;
-  const double c = length - rest_m;
-  double next = lambda + (-c - alpha_tilde * lambda) / (sum + alpha_tilde);
-  if (lambda_min != -HUGE_VAL || lambda_max != HUGE_VAL) next = std::clamp(next, lambda_min, lambda_max);
-  const double d_lambda = next - lambda;
-  lambda = next;
-  const Eigen::Vector3d n = d * (d_lambda / length);
-  x += w * n;
-  core_m -= w_core * n;
   return c;
 }
 

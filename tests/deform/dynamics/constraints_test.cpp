@@ -10,7 +10,8 @@ using deform::PlasticLaw;
 TEST_CASE("a rigid distance constraint is met in one projection, moving by inverse mass", "[dynamics]") {
   Eigen::Vector3d a(0, 0, 0), b(2, 0, 0);
   double lambda = 0;
-  const double c = deform::projectDistance(a, b, 1.0, 3.0, 1.0, 0.0, lambda);
+  const double c =
+      deform::projectDistance(a, b, 1.0, 3.0, 1.0, deform::distanceFactors(1.0, 3.0, 0.0, 1.0), lambda);
   CHECK(c == Approx(1.0));
   CHECK((a - b).norm() == Approx(1.0).margin(1e-15));
   CHECK(a.x() == Approx(0.25));  // a takes 1/4 of the correction, b 3/4
@@ -29,7 +30,8 @@ TEST_CASE("a compliant spoke under a constant load settles at alpha m g whatever
       v = v * std::exp(-20.0 * h) + Eigen::Vector3d(0, 0, -g * h);
       x += h * v;
       double lambda = 0;
-      deform::projectSpoke(x, core, 1.0 / mass_kg, 0.0, 1.0, compliance / (h * h), lambda);
+      deform::projectDistance(x, core, 1.0 / mass_kg, 0.0, 1.0,
+                              deform::distanceFactors(1.0 / mass_kg, 0.0, compliance, 1.0 / (h * h)), lambda);
       v = (x - previous) / h;
     }
     INFO("h = " << h);
