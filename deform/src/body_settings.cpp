@@ -204,7 +204,7 @@ BodySettings createBodySettings(const ControlMesh& mesh, const MassSplit& masses
         field.addTriangle(a, mesh.points_m[t[1]], mesh.points_m[t[2]], k,
                           patch_shares[t[static_cast<std::size_t>(k)]]);
   }
-  // Constraint arrays, in mesh order (deterministic).
+  // Constraint arrays, in mesh order (deterministic), put in sweep order at the end (putInSweepOrder).
   for (const ControlEdge& e : mesh.edges) {
     if (e.a >= n || e.b >= n || e.left >= n || e.right >= n)
       throw InputError("control mesh: edge index out of range");
