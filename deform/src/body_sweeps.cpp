@@ -24,7 +24,16 @@ void DeformableBody::refreshDistanceFactors() {
   for (std::size_t k = 0; k < s.bends.size(); ++k)
     bend_factors_[k] =
         distanceFactors(w[s.bends[k].left], w[s.bends[k].right], s.bends[k].compliance_m_per_N, inv_h2);
-  // The core as each column sees it (sweepConstraints: heavier where the shell outweighs it).
+  // The core is heavy: every column (or spoke) of a sweep sees it where the sweep began, and its corrections
+  // are summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
+  // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
+  // The summed move is the sum of each constraint's share of its correction; where the shares add up to
+  // S > 1 (a shell heavier than its core: distributeMass's own split gives S = 3) it overshoots by up to
+  // S, and diverges under a hard push. Each constraint then sees the core heavier, w'_core = S w_core +
+  // (S - 1) w_point, so that its share is 1/S of what it was and the core moves by the shares' weighted
+  // mean (mass splitting, Tonge, Benevolenski, Voroshilov 2012), still by the exact reaction of the
+  // points' moves. A car's shell is a third of its core (S < 1/3): untouched.
+  // Hence each column's factors hold the core as it sees it.
   const double w_core = core_inverse_mass_per_kg_, split = core_share_sum_;
   column_factors_.resize(s.spokes.size());
   for (std::size_t k = 0; k < s.spokes.size(); ++k) {
@@ -105,18 +114,8 @@ void DeformableBody::sweepConstraints() {
                       kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
     }
   };
-  // The core is heavy: every spoke of a sweep sees it where the sweep began, and its corrections are
-  // summed and applied after the sweep (Jacobi for the core, Gauss-Seidel for the points), which keeps
-  // the sweep free of a chain through one shared position. Momentum is exchanged exactly either way.
-  // The summed move is the sum of each constraint's share of its correction; where the shares add up to
-  // S > 1 (a shell heavier than its core: distributeMass's own split gives S = 3) it overshoots by up to
-  // S, and diverges under a hard push. Each constraint then sees the core heavier, w'_core = S w_core +
-  // (S - 1) w_point, so that its share is 1/S of what it was and the core moves by the shares' weighted
-  // mean (mass splitting, Tonge, Benevolenski, Voroshilov 2012), still by the exact reaction of the
-  // points' moves. A car's shell is a third of its core (S < 1/3): untouched.
-  const double split = core_share_sum_;
-  auto coreSeenBy = [&](uint32_t i) { return split > 1 ? split * w_core + (split - 1) * w[i] : w_core; };
-  // Each half of the columns sums its own pull and twist, and the halves are added in order: the same
+  // The core moves after the sweep by the columns' summed pull (refreshDistanceFactors says why). Each
+  // half of the columns sums its own pull and twist, and the halves are added in order: the same
   // sums on one thread or two.
   struct Reaction {
     Eigen::Vector3d pull{0, 0, 0}, twist{0, 0, 0};
@@ -158,9 +157,10 @@ void DeformableBody::sweepConstraints() {
       const std::size_t k = column_order[j];
       const SpokeConstraint& c = spokes[k];
       const Eigen::Vector3d before = x[c.point];
+      // The anchor is a copy, left unmoved (inverse mass 0 here): the core takes the sweep's summed pull.
       Eigen::Vector3d anchor = core + anchors[k];
-      projectDistance(x[c.point], anchor, w[c.point], coreSeenBy(c.point), spoke_rest[k], column_factors[k],
-                      spoke_lambda[k], kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
+      projectDistance(x[c.point], anchor, w[c.point], 0.0, spoke_rest[k], column_factors[k], spoke_lambda[k],
+                      kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
                       kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
       const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
       out.pull += pull;

@@ -10,10 +10,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <queue>
 #include <string>
 #include <tuple>
+
+#include "sweep_order.hpp"
 
 namespace deform {
 namespace {
@@ -318,18 +319,7 @@ namespace {
 /// against 1.15x).
 void numberAlongLongestSide(ControlMesh& mesh) {
   const std::size_t n = mesh.points_m.size();
-  if (n == 0) return;
-  Eigen::Vector3d low = mesh.points_m[0], high = mesh.points_m[0];
-  for (const auto& p : mesh.points_m) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  Eigen::Index axis = 0;
-  (high - low).maxCoeff(&axis);
-  std::vector<uint32_t> old_of(n);
-  std::iota(old_of.begin(), old_of.end(), 0u);
-  std::stable_sort(old_of.begin(), old_of.end(),
-                   [&](uint32_t i, uint32_t j) { return mesh.points_m[i][axis] < mesh.points_m[j][axis]; });
+  const std::vector<uint32_t> old_of = orderAlongLongestSide(mesh.points_m);
   std::vector<uint32_t> new_of(n);
   for (uint32_t k = 0; k < n; ++k) new_of[old_of[k]] = k;
   std::vector<Eigen::Vector3d> points(n);

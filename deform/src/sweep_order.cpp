@@ -31,9 +31,10 @@ void appendWindowed(const std::vector<std::array<uint32_t, 2>>& pairs, const std
 
 }  // namespace
 
-std::vector<uint8_t> bodyHalves(const std::vector<Eigen::Vector3d>& points_m) {
-  std::vector<uint8_t> halves(points_m.size(), 0);
-  if (points_m.empty()) return halves;
+std::vector<uint32_t> orderAlongLongestSide(const std::vector<Eigen::Vector3d>& points_m) {
+  std::vector<uint32_t> order(points_m.size());
+  std::iota(order.begin(), order.end(), 0u);
+  if (points_m.empty()) return order;
   Eigen::Vector3d low = points_m[0], high = points_m[0];
   for (const auto& p : points_m) {
     low = low.cwiseMin(p);
@@ -41,11 +42,15 @@ std::vector<uint8_t> bodyHalves(const std::vector<Eigen::Vector3d>& points_m) {
   }
   Eigen::Index axis = 0;
   (high - low).maxCoeff(&axis);
-  std::vector<uint32_t> by_coordinate(points_m.size());
-  std::iota(by_coordinate.begin(), by_coordinate.end(), 0u);
-  std::stable_sort(by_coordinate.begin(), by_coordinate.end(),
+  std::stable_sort(order.begin(), order.end(),
                    [&](uint32_t i, uint32_t j) { return points_m[i][axis] < points_m[j][axis]; });
-  for (std::size_t k = points_m.size() / 2; k < points_m.size(); ++k) halves[by_coordinate[k]] = 1;
+  return order;
+}
+
+std::vector<uint8_t> bodyHalves(const std::vector<Eigen::Vector3d>& points_m) {
+  std::vector<uint8_t> halves(points_m.size(), 0);
+  const std::vector<uint32_t> order = orderAlongLongestSide(points_m);
+  for (std::size_t k = points_m.size() / 2; k < points_m.size(); ++k) halves[order[k]] = 1;
   return halves;
 }
 

@@ -14,6 +14,9 @@ namespace deform {
 /// Constraints per window (at most 64: a window's greedy colouring needs no more colours than that).
 inline constexpr std::size_t kSweepWindow = 32;
 
+/// The points' indices in order along the longest side of their bounding box, ties by index.
+std::vector<uint32_t> orderAlongLongestSide(const std::vector<Eigen::Vector3d>& points_m);
+
 /// Which half of the body each point lies in (0 or 1): split at the median of the points' coordinate
 /// along the longest side of their bounding box, ties broken by index, so the halves hold n / 2 and
 /// n - n / 2 points and meet across one cross-section.
