@@ -103,8 +103,17 @@ void parseRegions(JsonObject& regions, std::vector<vehicle::RegionMaterial>& map
   }
 }
 
-DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling) {
+// The material map a car gets unless its scene names one: the sedan's for the built-in sedan, whose
+// crash tests calibrate it (docs/CRASH_CALIBRATION.md, "Material map"), uniform for any other mesh (a
+// file car, the can, a box), whose regions nobody has placed.
+std::string defaultMaterialMap(const std::string& mesh) {
+  return mesh.rfind("builtin:sedan", 0) == 0 ? "sedan" : "uniform";
+}
+
+DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling,
+                                   const std::string& mesh) {
   DeformationConfig d = *deformationPreset("balanced");
+  if (defaultMaterialMap(mesh) == "sedan") d.settings.regions = vehicle::sedanMaterialMap();
   if (object) {
     d = *deformationPreset(object->choice("preset", std::string("balanced"), presetNames()));
     vehicle::DeformationSettings& s = d.settings;
@@ -123,7 +132,8 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     for (const vehicle::MaterialMember& member : vehicle::materialMembers())
       s.material.*(member.member) =
           object->number(member.key, s.material.*(member.member), member.min, member.max);
-    const std::string map = object->choice("material_map", std::string("uniform"), {"uniform", "sedan"});
+    std::string map = object->choice("material_map", std::string("auto"), {"auto", "uniform", "sedan"});
+    if (map == "auto") map = defaultMaterialMap(mesh);
     s.regions = map == "sedan" ? vehicle::sedanMaterialMap() : std::vector<vehicle::RegionMaterial>{};
     if (auto regions = object->object("regions")) parseRegions(*regions, s.regions);
     s.shell_mass_fraction = object->number("shell_mass_fraction", s.shell_mass_fraction, 1e-3, 1);
@@ -218,7 +228,7 @@ VehicleConfig parseVehicle(JsonObject& object, std::size_t index, const std::str
   v.start.lateral_speed_kmh = start.number("lateral_speed_kmh", 0.0, -600, 600);
   v.start.on_ground = start.boolean("on_ground", true);
   start.finish();
-  v.deformation = parseDeformation(object.object("deformation"), coupling);
+  v.deformation = parseDeformation(object.object("deformation"), coupling, v.mesh);
   v.drive = parseDrive(object.object("drive"));
   object.finish();
   return v;

@@ -8,6 +8,7 @@
 #include <scenes/scene_file.hpp>
 
 #include <deform/error.hpp>
+#include <vehicle/material_map.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -244,11 +245,23 @@ TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
 }
 
 TEST_CASE("the material map: named regions, their values, new regions, and refusals", "[scenes]") {
-  // Uniform by default: no regions.
-  CHECK(scenes::parseScene(minimalScene(), "test.json").vehicles[0].deformation.settings.regions.empty());
+  // By default the built-in sedan has its map, any other mesh one material; "auto" names that default.
+  const auto regionCount = [](const json& doc) {
+    return scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.regions.size();
+  };
+  CHECK(regionCount(minimalScene()) == vehicle::sedanMaterialMap().size());
+  json other = minimalScene();
+  other["vehicle"]["mesh"] = "builtin:box";
+  CHECK(regionCount(other) == 0);
+  other["vehicle"]["deformation"]["material_map"] = "sedan";
+  CHECK(regionCount(other) == vehicle::sedanMaterialMap().size());
+  json uniform = minimalScene();
+  uniform["vehicle"]["deformation"]["material_map"] = "uniform";
+  CHECK(regionCount(uniform) == 0);
+  uniform["vehicle"]["deformation"]["material_map"] = "auto";
+  CHECK(regionCount(uniform) == vehicle::sedanMaterialMap().size());
 
   json doc = minimalScene();
-  scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.material_map=sedan"));
   scenes::applyOverride(doc,
                         scenes::parseOverride("vehicle.deformation.regions.doors.crush_strength_Pa=3e5"));
   scenes::applyOverride(doc, scenes::parseOverride("vehicle.deformation.regions.sill.box_min=[0.3,0,0]"));
@@ -265,6 +278,7 @@ TEST_CASE("the material map: named regions, their values, new regions, and refus
   CHECK(regions[6].get("hardening") == 0.5);
 
   json bad = minimalScene();
+  bad["vehicle"]["deformation"]["material_map"] = "uniform";
   bad["vehicle"]["deformation"]["regions"]["doors"]["crush_strength_Pa"] = 1;
   CHECK_THAT(refusal(bad), Catch::Contains("vehicle.deformation.regions.doors") &&
                                Catch::Contains("material_map is uniform"));

@@ -1,5 +1,5 @@
 set terminal pngcairo size 1100,700 font 'DejaVu Sans,11' noenhanced
-set output '/tmp/conv2/converge_volume.png'
+set output 'docs/measured/converge/converge_volume.png'
 set title 'Crushed volume against the level of detail (built-in sedan)'
 set logscale x
 set grid
@@ -9,5 +9,5 @@ set yrange [0:*]
 set xlabel 'control points N'
 set ylabel 'crushed volume [L]'
 set datafile separator ','
-plot '/tmp/conv2/converge_wall_crash.csv' using 1:4 with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'wall_crash', \
-  '/tmp/conv2/converge_pole_side.csv' using 1:4 with linespoints lw 2 pt 7 lc rgb '#d62728' title 'pole_side'
+plot 'docs/measured/converge/converge_wall_crash.csv' using 1:4 with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'wall_crash', \
+  'docs/measured/converge/converge_pole_side.csv' using 1:4 with linespoints lw 2 pt 7 lc rgb '#d62728' title 'pole_side'
