@@ -18,8 +18,9 @@ const char* skinMethodName(SkinMethod method) {
   return method == SkinMethod::mls ? "mls" : "idw";
 }
 
-SkinMethod preferredSkinMethod(std::size_t control_points) {
-  return control_points <= kMlsUpToControlPoints ? SkinMethod::mls : SkinMethod::idw;
+SkinMethod preferredSkinMethod(std::size_t control_points, std::size_t k_nearest) {
+  const bool enough_nearest = k_nearest == 0 || k_nearest >= kMlsFromNearest;
+  return control_points <= kMlsUpToControlPoints && enough_nearest ? SkinMethod::mls : SkinMethod::idw;
 }
 
 bool parseSkinMethod(const std::string& name, SkinMethod& method) {

@@ -36,7 +36,8 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   options.control_points = flags.control_points;
   options.lod = deform::parseLodMethod(flags.lod, "--lod");
   options.vehicle_mass_kg = flags.mass_kg;
-  options.skin = {flags.alpha, flags.k, flags.threads, deform::preferredSkinMethod(flags.control_points)};
+  options.skin = {flags.alpha, flags.k, flags.threads,
+                  deform::preferredSkinMethod(flags.control_points, flags.k)};
   if (flags.skin_method != "auto" && !deform::parseSkinMethod(flags.skin_method, options.skin.method))
     throw deform::InputError("--skin-method: must be auto, idw or mls (got '" + flags.skin_method + "')");
   // Every flag checked before the mesh is loaded (a large file takes seconds).

@@ -335,7 +335,8 @@ std::string lineColumn(const std::string& text, std::size_t offset) {
 }  // namespace
 
 void resolveSkinMethod(DeformationConfig& d) {
-  if (d.skin_method_auto) d.settings.skin_method = deform::preferredSkinMethod(d.settings.control_points);
+  if (d.skin_method_auto)
+    d.settings.skin_method = deform::preferredSkinMethod(d.settings.control_points, d.settings.k_nearest);
 }
 
 std::optional<DeformationConfig> deformationPreset(const std::string& name) {

@@ -67,7 +67,8 @@ TEST_CASE("Budget: the levels cost more the finer they are, and the presets are 
     CHECK(preset->settings.control_points == level->control_points);
     CHECK(preset->settings.substeps == level->substeps);
     CHECK(preset->settings.iterations == level->iterations);
-    CHECK(preset->settings.skin_method == deform::preferredSkinMethod(level->control_points));  // auto
+    CHECK(preset->settings.skin_method ==
+          deform::preferredSkinMethod(level->control_points, preset->settings.k_nearest));  // auto
   }
 }
 

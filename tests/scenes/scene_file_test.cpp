@@ -344,6 +344,15 @@ TEST_CASE("vehicle.deformation.skin_method takes auto, idw or mls and refuses an
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.skin_method_auto);
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::mls);
+  // ... and with at least 8 nearest points: the preset fast (K = 4) gets idw.
+  json fast = minimalScene();
+  fast["vehicle"]["deformation"]["preset"] = "fast";
+  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.k_nearest == 4);
+  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::idw);
+  fast["vehicle"]["deformation"]["k_nearest"] = 0;  // dense weights: mls
+  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::mls);
   doc["vehicle"]["deformation"]["control_points"] = 120;
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::idw);

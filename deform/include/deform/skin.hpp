@@ -37,9 +37,18 @@ bool parseSkinMethod(const std::string& name, SkinMethod& method);
 /// 2,000).
 inline constexpr std::size_t kMlsUpToControlPoints = 60;
 
-/// The skin measured best at `control_points` (what the skin method `auto` chooses): mls up to
-/// kMlsUpToControlPoints (the presets fast and balanced), idw above.
-SkinMethod preferredSkinMethod(std::size_t control_points);
+/// The fewest nearest points mls needs to be the better skin. With K = 4 its affine fit through four
+/// points interpolates them and extrapolates freely: after the 56 km/h wall crash at 60 points it carries
+/// vertices at the bonnet's rear 0.70 m where no control point moves more than 0.49 m, and it is worse
+/// than idw at K = 4 on both of `sandbox tradeoff`'s scenes (wall_crash 37.2 against 32.0 mm RMS, 590
+/// against 298 mm largest; post_bumps 22.5 against 19.7 mm RMS; docs/TRADEOFF.md). At K = 8, 16 and
+/// dense it is the better one.
+inline constexpr std::size_t kMlsFromNearest = 8;
+
+/// The skin measured best at `control_points` with `k_nearest` points per vertex (0: every point), what
+/// the skin method `auto` chooses: mls up to kMlsUpToControlPoints points with at least kMlsFromNearest
+/// nearest points (or dense weights), idw otherwise (the preset fast, K = 4, gets idw).
+SkinMethod preferredSkinMethod(std::size_t control_points, std::size_t k_nearest);
 
 /// How a skin stores its weights (Skin::build). The per-frame pass is memory-bound (docs/BENCHMARKS.md):
 /// its cost follows the bytes it reads per vertex, so the compact form is the default.

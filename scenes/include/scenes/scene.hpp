@@ -18,11 +18,11 @@ struct DeformationConfig {
   std::string preset = "balanced";        ///< fast, balanced or accurate
   vehicle::DeformationSettings settings;  ///< the preset's values with the scene's keys applied
   /// skin_method `auto` (the default): settings.skin_method is deform::preferredSkinMethod of the car's
-  /// control points, chosen again when a budget changes them (resolveSkinMethod).
+  /// control points and nearest points K, chosen again when a budget changes them (resolveSkinMethod).
   bool skin_method_auto = true;
 };
 
-/// Sets `d`'s skin method from its control points when it is `auto`.
+/// Sets `d`'s skin method from its control points and K when it is `auto`.
 void resolveSkinMethod(DeformationConfig& d);
 
 /// Values of a named preset ("fast", "balanced" = vehicle's calibrated defaults, "accurate"): control
