@@ -194,7 +194,7 @@ TEST_CASE("overrides (--set) change any key and are checked as strictly as the f
   const scenes::SceneConfig scene = scenes::parseScene(doc, "test.json");
   CHECK(scene.vehicles[0].start.speed_kmh == 5);
   CHECK(scene.obstacles[0].size_m.y() == 5);
-  CHECK(scene.vehicles[0].deformation.settings.k_nearest == 4);
+  CHECK(scene.vehicles[0].deformation.settings.substeps == 2);
   CHECK(scene.vehicles[0].deformation.settings.iterations == 1);
 
   // One past the end appends (an extra obstacle), checked like the rest.
@@ -344,14 +344,13 @@ TEST_CASE("vehicle.deformation.skin_method takes auto, idw or mls and refuses an
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.skin_method_auto);
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::mls);
-  // ... and with at least 8 nearest points: the preset fast (K = 4) gets idw.
-  json fast = minimalScene();
-  fast["vehicle"]["deformation"]["preset"] = "fast";
-  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.k_nearest == 4);
-  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.skin_method ==
+  // ... and with at least 8 nearest points (or dense weights): K = 4 gets idw.
+  json few = minimalScene();
+  few["vehicle"]["deformation"]["k_nearest"] = 4;
+  CHECK(scenes::parseScene(few, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::idw);
-  fast["vehicle"]["deformation"]["k_nearest"] = 0;  // dense weights: mls
-  CHECK(scenes::parseScene(fast, "test.json").vehicles[0].deformation.settings.skin_method ==
+  few["vehicle"]["deformation"]["k_nearest"] = 0;
+  CHECK(scenes::parseScene(few, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::mls);
   doc["vehicle"]["deformation"]["control_points"] = 120;
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
