@@ -272,3 +272,14 @@ TEST_CASE("mls weights are continuous where a vertex's nearest control points ch
       CHECK(mls <= idw);
     }
 }
+
+TEST_CASE("auto chooses mls up to 60 points with at least 8 nearest points, idw otherwise", "[skin][mls]") {
+  // The measured rule (deform/skin.hpp: kMlsUpToControlPoints, kMlsFromNearest; docs/TRADEOFF.md).
+  CHECK(deform::preferredSkinMethod(60, 8) == SkinMethod::mls);
+  CHECK(deform::preferredSkinMethod(60, 16) == SkinMethod::mls);
+  CHECK(deform::preferredSkinMethod(60, 0) == SkinMethod::mls);  // dense weights
+  CHECK(deform::preferredSkinMethod(60, 4) == SkinMethod::idw);  // an affine fit through four points
+  CHECK(deform::preferredSkinMethod(60, 7) == SkinMethod::idw);
+  CHECK(deform::preferredSkinMethod(61, 8) == SkinMethod::idw);
+  CHECK(deform::preferredSkinMethod(2000, 0) == SkinMethod::idw);
+}
