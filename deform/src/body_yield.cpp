@@ -105,10 +105,14 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   const auto& x = state_.positions_m;
   const auto& laws = settings.plastic_laws;
   // One constraint: new rest length by the return map; the plastic work is the force the constraint
-  // carried times the flow |dL| (the 1D sigma_y d eps_p). That force is what the solver applied this
-  // substep, |lambda| / h^2 (XPBD eq. 18: a stiff constraint the iterations did not converge carries less
-  // than its elastic formula says), and never more than the yield force left after the flow,
-  // |l - L'| / alpha.
+  // carried along the flow times the flow |dL| (the 1D sigma_y d eps_p, a dissipation sigma eps_p' >= 0:
+  // Simo & Hughes 1998, "Computational Inelasticity", section 1.2). That force is what the solver applied
+  // this substep, lambda / h^2 (XPBD eq. 18: a stiff constraint the iterations did not converge carries
+  // less than its elastic formula says), taken along the flow and never below zero, and never more than
+  // the yield force left after the flow, |l - L'| / alpha. An unconverged solve can leave a constraint
+  // past its band opposite to the force it applied (a bar pushed apart that then flows longer): its rest
+  // length still follows the geometry, but no force of it did that work (with |lambda| such flow booked
+  // 4.5 kJ the side pole's shell never took at 2000 points; docs/CRASH_CALIBRATION.md, "Energy account").
   const double inv_h2 = 1.0 / (h * h);
   // Most constraints stay inside their cached elastic band (elasticBand): a squared length and two
   // comparisons; the square root and the return map only for the rest, with the same result as always.
@@ -122,7 +126,9 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
     if (params_.yield_limited) carries = yieldForce(compliance, moved, original, yield, laws[material]);
     // A rigid constraint (alpha = 0) has no defined yield force: its flow is counted at zero work.
     if (compliance > 0) {
-      const double force_N = std::min(std::abs(lambda) * inv_h2, std::abs(length - moved) / compliance);
+      // lambda < 0 pulls the ends together (tension), lambda > 0 pushes them apart.
+      const double along_flow_N = std::max(0.0, moved > rest ? -lambda : lambda) * inv_h2;
+      const double force_N = std::min(along_flow_N, std::abs(length - moved) / compliance);
       work_J += force_N * std::abs(moved - rest);
     }
     rest = moved;
@@ -154,9 +160,15 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
                               settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);
         if (moved == rest) continue;
         if (c.compliance_m_per_N > 0) {
-          const double force_N =
-              std::min(column_lambda_[k].norm() * inv_h2, (local - moved).norm() / c.compliance_m_per_N);
-          work_J += force_N * (moved - rest).norm();
+          // The column pushes its point along lambda, and the rest place flows along the displacement,
+          // against it: the force along the flow is -lambda . (flow direction).
+          const Eigen::Vector3d flow_m = moved - rest;
+          const double flow_length_m = flow_m.norm();
+          const double along_flow_N =
+              flow_length_m > 0 ? std::max(0.0, -column_lambda_[k].dot(flow_m) / flow_length_m) * inv_h2
+                                : 0.0;
+          const double force_N = std::min(along_flow_N, (local - moved).norm() / c.compliance_m_per_N);
+          work_J += force_N * flow_length_m;
         }
         rest = moved;
         refreshColumn(k);
