@@ -42,7 +42,7 @@ const std::vector<DeformationLevel>& deformationLevels() {
   // where the cap adds no substep; below, contactCostScale charges a level the substeps the cap adds.
   // fast's K is 8 since 2026-11-26: at K = 4 neither skin was right after the wall crash (idw left lobes
   // 9 cm deep across the crushed front, mls carried vertices 0.2 m past every control point), and K = 8
-  // costs about one tenth more to embed (docs/TRADEOFF.md).
+  // costs 8-16 % more to embed at 20,000 vertices (docs/TRADEOFF.md); the step's cost does not change.
   static const std::vector<DeformationLevel> levels = {
       {"fast", 60, 8, 2, 1, 0.013, 0.021, 0.34},    {"balanced", 60, 8, 4, 2, 0.044, 0.056, 0.69},
       {"accurate", 250, 8, 4, 2, 0.166, 0.18, 3.5}, {"fine", 500, 8, 4, 2, 0.31, 0.34, 8.4},

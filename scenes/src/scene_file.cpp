@@ -103,17 +103,18 @@ void parseRegions(JsonObject& regions, std::vector<vehicle::RegionMaterial>& map
   }
 }
 
-// The material map a car gets unless its scene names one: the sedan's for the built-in sedan, whose
-// crash tests calibrate it (docs/CRASH_CALIBRATION.md, "Material map"), uniform for any other mesh (a
-// file car, the can, a box), whose regions nobody has placed.
-std::string defaultMaterialMap(const std::string& mesh) {
-  return mesh.rfind("builtin:sedan", 0) == 0 ? "sedan" : "uniform";
+// The regions of material map `name`; `auto`, what a car gets unless its scene names one, is the sedan's for
+// the built-in sedan (docs/CRASH_CALIBRATION.md, "Material map": its values and where they come from),
+// uniform for any other mesh (a file car, the can, a box), whose regions nobody has placed.
+std::vector<vehicle::RegionMaterial> materialMap(std::string name, const std::string& mesh) {
+  if (name == "auto") name = mesh.rfind("builtin:sedan", 0) == 0 ? "sedan" : "uniform";
+  return name == "sedan" ? vehicle::sedanMaterialMap() : std::vector<vehicle::RegionMaterial>{};
 }
 
 DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Coupling coupling,
                                    const std::string& mesh) {
   DeformationConfig d = *deformationPreset("balanced");
-  if (defaultMaterialMap(mesh) == "sedan") d.settings.regions = vehicle::sedanMaterialMap();
+  d.settings.regions = materialMap("auto", mesh);
   if (object) {
     d = *deformationPreset(object->choice("preset", std::string("balanced"), presetNames()));
     vehicle::DeformationSettings& s = d.settings;
@@ -132,9 +133,8 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     for (const vehicle::MaterialMember& member : vehicle::materialMembers())
       s.material.*(member.member) =
           object->number(member.key, s.material.*(member.member), member.min, member.max);
-    std::string map = object->choice("material_map", std::string("auto"), {"auto", "uniform", "sedan"});
-    if (map == "auto") map = defaultMaterialMap(mesh);
-    s.regions = map == "sedan" ? vehicle::sedanMaterialMap() : std::vector<vehicle::RegionMaterial>{};
+    s.regions =
+        materialMap(object->choice("material_map", std::string("auto"), {"auto", "uniform", "sedan"}), mesh);
     if (auto regions = object->object("regions")) parseRegions(*regions, s.regions);
     s.shell_mass_fraction = object->number("shell_mass_fraction", s.shell_mass_fraction, 1e-3, 1);
     s.damping = object->number("damping", s.damping, 0, 1000);

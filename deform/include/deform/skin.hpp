@@ -47,7 +47,7 @@ inline constexpr std::size_t kMlsFromNearest = 8;
 
 /// The skin measured best at `control_points` with `k_nearest` points per vertex (0: every point), what
 /// the skin method `auto` chooses: mls up to kMlsUpToControlPoints points with at least kMlsFromNearest
-/// nearest points (or dense weights), idw otherwise (the preset fast, K = 4, gets idw).
+/// nearest points (or dense weights), idw otherwise (a scene's K = 4 gets idw; the presets have K = 8).
 SkinMethod preferredSkinMethod(std::size_t control_points, std::size_t k_nearest);
 
 /// How a skin stores its weights (Skin::build). The per-frame pass is memory-bound (docs/BENCHMARKS.md):
