@@ -55,6 +55,12 @@ std::string hashHex(uint64_t hash) {
   return text;
 }
 
+nlohmann::json profileJson(const std::vector<double>& profile_m) {
+  nlohmann::json out = nlohmann::json::array();
+  for (double c : profile_m) out.push_back(std::isnan(c) ? nlohmann::json(nullptr) : nlohmann::json(c));
+  return out;
+}
+
 void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string temporary = path + ".tmp";
   {
@@ -244,6 +250,8 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
   j["restitution"] = m.restitution;
   j["residual_crush_m"] = m.residual_crush_m;
   j["max_residual_crush_m"] = m.max_residual_crush_m;
+  j["crush_profile_m"] = profileJson(m.crush_profile_m);
+  j["crush_height_m"] = m.crush_height_m;
   j["max_dynamic_crush_m"] = m.max_dynamic_crush_m;
   j["crushed_volume_m3"] = m.crushed_volume_m3;
   // dissipated_J holds other_work_J (tyres, engine, drag, gravity, rigid contacts): negative when the

@@ -50,12 +50,16 @@ TEST_CASE("headless runs never embed, write the named figures and repeat bit for
   options.out = (dir / "b").string();
   const sandbox::RunResult b = sandbox::runScene(options);
   const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir / "a" / "summary.json"));
-  for (const char* key : {"impact_speed_mps", "rebound_speed_mps", "restitution", "residual_crush_m",
-                          "max_residual_crush_m", "max_dynamic_crush_m", "energy", "max_deviation_m",
-                          "max_penetration_m", "tunnelled", "diverged", "state_hash", "steps", "timing_ms"}) {
+  for (const char* key :
+       {"impact_speed_mps", "rebound_speed_mps", "restitution", "residual_crush_m", "max_residual_crush_m",
+        "max_dynamic_crush_m", "energy", "max_deviation_m", "max_penetration_m", "tunnelled", "diverged",
+        "state_hash", "steps", "timing_ms", "crush_profile_m", "crush_height_m"}) {
     INFO(key);
     CHECK(summary.contains(key));
   }
+  // The stations behind residual_crush_m, written as numbers (a barrier meets them all).
+  REQUIRE(summary["crush_profile_m"].size() == 6);
+  for (const nlohmann::json& station : summary["crush_profile_m"]) CHECK(station.is_number());
   for (const char* key : {"kinetic_initial_J", "plastic_work_J", "dissipated_J", "kinetic_final_J"}) {
     CHECK(summary["energy"].contains(key));
   }

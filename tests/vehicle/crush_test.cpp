@@ -89,6 +89,23 @@ TEST_CASE("Crush: 56 km/h full-width rigid barrier as in NCAP / FMVSS 208", "[cr
   CHECK(m.max_residual_crush_m >= m.residual_crush_m);
   CHECK(m.max_residual_crush_m < 0.85);
   CHECK(m.max_dynamic_crush_m >= 0.9 * m.residual_crush_m);
+  // The six stations behind the average: a full-width barrier meets every one, the average and the
+  // largest are theirs, and a symmetric car against a square wall crushes its two halves alike
+  // (60 points: C2 0.424 m and C5 0.429 m, C1 = C6 0.236 m).
+  REQUIRE(m.crush_profile_m.size() == 6);
+  double sum = 0, largest = 0;
+  for (double c : m.crush_profile_m) {
+    REQUIRE(std::isfinite(c));
+    sum += c;
+    largest = std::max(largest, c);
+  }
+  CHECK(sum / 6 == Approx(m.residual_crush_m).epsilon(1e-12));
+  CHECK(largest == m.max_residual_crush_m);
+  for (std::size_t j = 0; j < 3; ++j) CHECK(std::abs(m.crush_profile_m[j] - m.crush_profile_m[5 - j]) < 0.01);
+  // Measured at the bumper: within the body's height, in its lower half.
+  const deform::Aabb body = deform::boundingBox(sedan().body);
+  CHECK(m.crush_height_m > body.min_m.z());
+  CHECK(m.crush_height_m < 0.5 * (body.min_m.z() + body.max_m.z()));
   // Stopped by the crumple zone, before the engine block (its front at 0.82 of the length).
   CHECK(m.max_dynamic_crush_m < (1 - DeformationSettings{}.rigid_parts[1].max_m.x()) *
                                     deform::boundingBox(sedan().body).size_m().x());

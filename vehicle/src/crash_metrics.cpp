@@ -56,7 +56,9 @@ std::vector<double> crushProfile(const deform::ControlMesh& mesh,
     const Eigen::Vector3d base = y * lateral + Eigen::Vector3d(0, 0, z_m);
     const auto rest = furthestHit(mesh, mesh.points_m, base, d);
     const auto now = furthestHit(mesh, points_m, base, d);
-    if (rest && now) out.push_back(std::max(0.0, *rest - *now));
+    // A station whose line passes above or below the surface (a coarse hull's chamfered end) has no
+    // value: NaN keeps the others at their stations.
+    out.push_back(rest && now ? std::max(0.0, *rest - *now) : std::numeric_limits<double>::quiet_NaN());
   }
   return out;
 }

@@ -173,14 +173,17 @@ CrashMetrics Simulation::metrics(CarId car) const {
     out.max_dent_m =
         std::max(out.max_dent_m,
                  -(dc.body->state().positions_m[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
-  if (!crush.empty()) {
-    double sum = 0;
-    for (double c : crush) {
-      sum += c;
-      out.max_residual_crush_m = std::max(out.max_residual_crush_m, c);
-    }
-    out.residual_crush_m = sum / static_cast<double>(crush.size());
+  out.crush_profile_m = crush;
+  out.crush_height_m = rest[lead].z();
+  double sum = 0;
+  std::size_t hits = 0;
+  for (double c : crush) {
+    if (std::isnan(c)) continue;  // the station's line misses the surface
+    sum += c;
+    ++hits;
+    out.max_residual_crush_m = std::max(out.max_residual_crush_m, c);
   }
+  if (hits > 0) out.residual_crush_m = sum / static_cast<double>(hits);
   return out;
 }
 

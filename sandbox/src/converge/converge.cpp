@@ -25,6 +25,10 @@ struct ConvergeRow {
   std::size_t control_points = 0;
   double residual_crush_m = 0, max_residual_crush_m = 0, max_dynamic_crush_m = 0, max_dent_m = 0;
   double restitution = 0, plastic_work_J = 0, kinetic_initial_J = 0, deform_ms = 0, crushed_volume_m3 = 0;
+  /// The stations behind the residual crush, across the width (NaN: the station's line missed the
+  /// surface), and their height [m]: where a level of detail gains or loses crush.
+  std::vector<double> crush_profile_m;
+  double crush_height_m = 0;
   double change_from_finest = 0;         ///< residual crush relative to the finest level's, minus one [1]
   double volume_change_from_finest = 0;  ///< crushed volume relative to the finest level's, minus one [1]
 };
@@ -43,14 +47,53 @@ ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
   row.plastic_work_J = number("plastic_work_J");
   row.kinetic_initial_J = number("kinetic_initial_J");
   row.deform_ms = number("deform_ms");
+  // Written before the profile was measured: none (the tables leave it out).
+  const auto profile = m.find("crush_profile_m");
+  if (profile != m.end() && profile->is_array()) {
+    for (const nlohmann::json& station : *profile)  // null: a NaN written out (the line missed the surface)
+      row.crush_profile_m.push_back(station.is_number() ? station.get<double>() : std::nan(""));
+    row.crush_height_m = number("crush_height_m");
+  }
   return row;
+}
+
+/// The stations' crush, space separated or one table cell each ("-": the line missed the surface) [m].
+std::string profileText(const std::vector<double>& profile_m, const char* between) {
+  std::string text;
+  for (std::size_t j = 0; j < profile_m.size(); ++j)
+    text +=
+        (j ? between : "") + (std::isnan(profile_m[j]) ? std::string("-") : CsvTable::fixed(profile_m[j], 3));
+  return text;
+}
+
+/// Where along the width each level gains or loses crush: the stations per level. Empty when the rows
+/// carry no profile.
+std::string profileTable(const std::vector<ConvergeRow>& rows, const std::string& name) {
+  std::size_t stations = 0;
+  for (const ConvergeRow& r : rows)
+    if (r.scene == name) stations = std::max(stations, r.crush_profile_m.size());
+  if (stations == 0) return "";
+  std::ostringstream md;
+  md << "\nThe stations behind the residual crush (C1 to C" << stations
+     << " across the struck side, at the height of its most protruding control point; - where the line "
+        "misses the control surface), m:\n\n| control points | height m |";
+  for (std::size_t j = 0; j < stations; ++j) md << " C" << j + 1 << " |";
+  md << "\n|---|---|";
+  for (std::size_t j = 0; j < stations; ++j) md << "---|";
+  md << "\n";
+  for (const ConvergeRow& r : rows)
+    if (r.scene == name && !r.crush_profile_m.empty())
+      md << "| " << r.control_points << " | " << CsvTable::fixed(r.crush_height_m, 3) << " | "
+         << profileText(r.crush_profile_m, " | ") << " |\n";
+  return md.str();
 }
 
 void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::string>& names,
                   const std::string& dir) {
   CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
                 "max_dent_m", "restitution", "plastic_work_J", "kinetic_initial_J", "change_from_finest",
-                "deform_ms", "crushed_volume_m3", "volume_change_from_finest"});
+                "deform_ms", "crushed_volume_m3", "volume_change_from_finest", "crush_height_m",
+                "crush_profile_m"});
   std::ostringstream md;
   md << "Residual crush (six-station average) and crushed volume (the control surface's, at rest less now) "
         "against the level of detail; each change is against the finest level.\n";
@@ -66,7 +109,8 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                   CsvTable::number(r.max_dent_m), CsvTable::number(r.restitution),
                   CsvTable::number(r.plastic_work_J), CsvTable::number(r.kinetic_initial_J),
                   CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms),
-                  CsvTable::number(r.crushed_volume_m3), CsvTable::number(r.volume_change_from_finest)});
+                  CsvTable::number(r.crushed_volume_m3), CsvTable::number(r.volume_change_from_finest),
+                  CsvTable::number(r.crush_height_m), profileText(r.crush_profile_m, " ")});
       md << "| " << r.control_points << " | " << CsvTable::fixed(r.residual_crush_m, 3) << " | "
          << CsvTable::fixed(r.max_residual_crush_m, 3) << " | " << CsvTable::fixed(r.max_dynamic_crush_m, 3)
          << " | " << CsvTable::fixed(r.max_dent_m, 3) << " | " << CsvTable::fixed(r.restitution, 3) << " | "
@@ -77,6 +121,7 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
          << CsvTable::fixed(100 * r.volume_change_from_finest, 1) << " % | "
          << CsvTable::fixed(r.deform_ms, 0) << " |\n";
     }
+    md << profileTable(rows, name);
   }
   scenes::writeFileAtomically(dir + "/converge.csv", csv.text());
   scenes::writeFileAtomically(dir + "/converge.md", md.str());

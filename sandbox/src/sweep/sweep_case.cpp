@@ -33,6 +33,8 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
           {"impact_speed_mps", m.impact_speed_mps},
           {"residual_crush_m", m.residual_crush_m},
           {"max_residual_crush_m", m.max_residual_crush_m},
+          {"crush_profile_m", scenes::profileJson(m.crush_profile_m)},
+          {"crush_height_m", m.crush_height_m},
           {"max_dynamic_crush_m", m.max_dynamic_crush_m},
           {"max_dent_m", m.max_dent_m},
           {"crushed_volume_m3", m.crushed_volume_m3},

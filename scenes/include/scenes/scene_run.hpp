@@ -178,6 +178,10 @@ int defaultThreads();
 /// "0123456789abcdef": a state hash as 16 hex digits.
 std::string hashHex(uint64_t hash);
 
+/// CrashMetrics::crush_profile_m as JSON: a number per station, null where the station's line missed
+/// the surface (NaN), so that two summaries of the same run compare equal.
+nlohmann::json profileJson(const std::vector<double>& profile_m);
+
 /// Writes `text` to `path` atomically (path.tmp, then rename). Throws std::runtime_error naming the path.
 void writeFileAtomically(const std::string& path, const std::string& text);
 

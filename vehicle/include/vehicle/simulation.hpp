@@ -179,6 +179,11 @@ struct CrashMetrics {
   /// largest [m] (of the control surface, from the rest shape to the shape now).
   double residual_crush_m = 0;
   double max_residual_crush_m = 0;
+  /// The six stations' intrusions behind that average, in order along up x impact direction (a frontal
+  /// impact: from the car's right, -y, to its left), NaN where a station's line misses the surface [m];
+  /// and the height they are measured at [m, vehicle frame]. Empty and 0 before an impact.
+  std::vector<double> crush_profile_m;
+  double crush_height_m = 0;
   /// Deepest dent: the largest displacement of a control point against the impact direction now [m]
   /// (a pole's narrow dent can fall between the six stations).
   double max_dent_m = 0;
@@ -287,7 +292,8 @@ class Simulation {
 /// The permanent-crush measurement of CrashMetrics on its own: profile of `mesh`'s triangles with the
 /// points `points_m` along `direction` (horizontal, vehicle frame, pointing out of the struck end) at
 /// height z_m, at `stations` equally spaced positions across the width of the rest shape; returns the
-/// intrusion per station (rest profile minus profile now) [m].
+/// intrusion per station (rest profile minus profile now) [m], in order across the width, NaN at a
+/// station whose line misses the surface (at rest or now).
 std::vector<double> crushProfile(const deform::ControlMesh& mesh,
                                  const std::vector<Eigen::Vector3d>& points_m,
                                  const Eigen::Vector3d& direction, double z_m, int stations = 6);
