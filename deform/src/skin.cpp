@@ -11,11 +11,12 @@
 #include <string>
 
 #include "nearest_points.hpp"
+#include "skin_spline.hpp"
 #include "skin_weights.hpp"
 
 namespace deform {
 const char* skinMethodName(SkinMethod method) {
-  return method == SkinMethod::mls ? "mls" : "idw";
+  return method == SkinMethod::mls ? "mls" : method == SkinMethod::spline ? "spline" : "idw";
 }
 
 SkinMethod preferredSkinMethod(std::size_t control_points, std::size_t k_nearest) {
@@ -28,6 +29,8 @@ bool parseSkinMethod(const std::string& name, SkinMethod& method) {
     method = SkinMethod::idw;
   else if (name == "mls")
     method = SkinMethod::mls;
+  else if (name == "spline")
+    method = SkinMethod::spline;
   else
     return false;
   return true;
@@ -43,13 +46,18 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   for (const auto& v : vertices_m)
     if (!v.allFinite()) throw InputError("skin: a vertex has a non-finite coordinate");
 
-  Skin skin;
   const std::size_t n = control_rest_m.size();
+  if (options.method == SkinMethod::spline && n > kSplineMostControlPoints)
+    throw InputError("skin: spline weights are dense (every control point on every vertex): at most " +
+                     std::to_string(kSplineMostControlPoints) + " control points (got " + std::to_string(n) +
+                     "); idw or mls take any number");
+  Skin skin;
   skin.vertex_count_ = vertices_m.size();
   skin.control_count_ = n;
   skin.alpha_ = options.alpha;
   skin.method_ = options.method;
-  skin.influences_ = options.k_nearest == 0 ? n : std::min(options.k_nearest, n);
+  skin.influences_ =
+      options.k_nearest == 0 || options.method == SkinMethod::spline ? n : std::min(options.k_nearest, n);
   skin.layout_ = options.layout;
   const std::size_t slots = skin.vertex_count_ * skin.influences_;
   // Built in float and 32-bit indices, then re-stored in the layout asked for (skin_layout.cpp).
@@ -57,84 +65,99 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
   std::vector<float> built_weights(slots);
 
   const std::size_t K = skin.influences_;
-  // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
-  const bool use_tree = K < n && n > 32;
-  std::optional<detail::PointKdTree> tree;
-  if (use_tree) tree.emplace(control_rest_m);
-  parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<detail::RankedPoint> ranked, candidates;
-    std::vector<double> distance(K), weight(K);
-    std::vector<Eigen::Vector3d> point(K);
-    std::vector<uint32_t> chosen(K);
-    for (std::size_t j = begin; j < end; ++j) {
-      const Eigen::Vector3d v = vertices_m[j].cast<double>();
-      // mls: the (K+1)-th nearest too, at whose distance the fit's weights fall to zero (continuity).
-      const std::size_t asked = options.method == SkinMethod::mls && K < n ? K + 1 : K;
-      if (use_tree) {
-        tree->nearest(v, asked, ranked);
-      } else {
-        ranked.clear();
-        for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
-        if (asked < n)
-          std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
-                           ranked.end());
-        ranked.resize(asked);
-        if (asked > K)  // the (K+1)-th nearest last
-          std::iter_swap(std::max_element(ranked.begin(), ranked.end()), ranked.end() - 1);
-      }
-      double cutoff_m = 0;
-      if (asked > K) {
-        cutoff_m = std::sqrt(ranked.back().distance2_m2);
-        ranked.pop_back();
-      }
-      // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
-      // among the nearest few dozen, then (a large flat side of the hull) among all.
-      if (options.method == SkinMethod::mls && K < n && detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
-        const std::vector<detail::RankedPoint> nearest = ranked;
-        bool widened = false;
-        if (use_tree) {
-          tree->nearest(v, std::min(n, 4 * K + 16), candidates);
-          widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
+  if (options.method == SkinMethod::spline) {
+    const detail::SplineWeights spline(control_rest_m);
+    parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<double> weight(n);
+      for (std::size_t j = begin; j < end; ++j) {
+        spline.weigh(vertices_m[j].cast<double>(), weight.data());
+        for (std::size_t k = 0; k < n; ++k) {
+          built_indices[j * n + k] = static_cast<uint32_t>(k);
+          built_weights[j * n + k] = static_cast<float>(weight[k]);
         }
-        if (!widened) {
-          ranked = nearest;
+      }
+    });
+  } else {
+    // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
+    const bool use_tree = K < n && n > 32;
+    std::optional<detail::PointKdTree> tree;
+    if (use_tree) tree.emplace(control_rest_m);
+    parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<detail::RankedPoint> ranked, candidates;
+      std::vector<double> distance(K), weight(K);
+      std::vector<Eigen::Vector3d> point(K);
+      std::vector<uint32_t> chosen(K);
+      for (std::size_t j = begin; j < end; ++j) {
+        const Eigen::Vector3d v = vertices_m[j].cast<double>();
+        // mls: the (K+1)-th nearest too, at whose distance the fit's weights fall to zero (continuity).
+        const std::size_t asked = options.method == SkinMethod::mls && K < n ? K + 1 : K;
+        if (use_tree) {
+          tree->nearest(v, asked, ranked);
+        } else {
+          ranked.clear();
+          for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+          if (asked < n)
+            std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
+                             ranked.end());
+          ranked.resize(asked);
+          if (asked > K)  // the (K+1)-th nearest last
+            std::iter_swap(std::max_element(ranked.begin(), ranked.end()), ranked.end() - 1);
+        }
+        double cutoff_m = 0;
+        if (asked > K) {
+          cutoff_m = std::sqrt(ranked.back().distance2_m2);
+          ranked.pop_back();
+        }
+        // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
+        // among the nearest few dozen, then (a large flat side of the hull) among all.
+        if (options.method == SkinMethod::mls && K < n &&
+            detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
+          const std::vector<detail::RankedPoint> nearest = ranked;
+          bool widened = false;
+          if (use_tree) {
+            tree->nearest(v, std::min(n, 4 * K + 16), candidates);
+            widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
+          }
+          if (!widened) {
+            ranked = nearest;
+            candidates.clear();
+            for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+            std::sort(candidates.begin(), candidates.end());
+            detail::widenSpan(v, control_rest_m, ranked, candidates);
+          }
+        }
+        auto weigh = [&] {
+          // Slots in index order: deterministic, and the displacement reads walk forward through memory.
+          std::sort(ranked.begin(), ranked.end(),
+                    [](const auto& a, const auto& b) { return a.index < b.index; });
+          for (std::size_t k = 0; k < K; ++k) {
+            chosen[k] = ranked[k].index;
+            distance[k] = std::sqrt(ranked[k].distance2_m2);
+            point[k] = control_rest_m[chosen[k]];
+          }
+          if (options.method != SkinMethod::mls) {
+            detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
+            return true;
+          }
+          return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
+                                                   weight.data(), cutoff_m);
+        };
+        // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
+        // not exact for affine maps: widen the points across their plane by their own extent and fit again.
+        if (!weigh() && K < n) {
           candidates.clear();
           for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
           std::sort(candidates.begin(), candidates.end());
-          detail::widenSpan(v, control_rest_m, ranked, candidates);
+          detail::widenSpan(v, control_rest_m, ranked, candidates, true);
+          weigh();
         }
-      }
-      auto weigh = [&] {
-        // Slots in index order: deterministic, and the displacement reads walk forward through memory.
-        std::sort(ranked.begin(), ranked.end(),
-                  [](const auto& a, const auto& b) { return a.index < b.index; });
         for (std::size_t k = 0; k < K; ++k) {
-          chosen[k] = ranked[k].index;
-          distance[k] = std::sqrt(ranked[k].distance2_m2);
-          point[k] = control_rest_m[chosen[k]];
+          built_indices[j * K + k] = chosen[k];
+          built_weights[j * K + k] = static_cast<float>(weight[k]);
         }
-        if (options.method != SkinMethod::mls) {
-          detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
-          return true;
-        }
-        return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
-                                                 weight.data(), cutoff_m);
-      };
-      // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
-      // not exact for affine maps: widen the points across their plane by their own extent and fit again.
-      if (!weigh() && K < n) {
-        candidates.clear();
-        for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
-        std::sort(candidates.begin(), candidates.end());
-        detail::widenSpan(v, control_rest_m, ranked, candidates, true);
-        weigh();
       }
-      for (std::size_t k = 0; k < K; ++k) {
-        built_indices[j * K + k] = chosen[k];
-        built_weights[j * K + k] = static_cast<float>(weight[k]);
-      }
-    }
-  });
+    });
+  }
   skin.storeCompact(built_weights, built_indices);
   // Reverse index (counting sort by control point); slots with zero weight (after rounding) influence
   // nothing.

@@ -55,6 +55,17 @@ void runEmbed(const EmbedFlags& flags) {
   ratio(mls["speedup_vs_plain"]);
   std::printf("\n                  %.2e m from double, build %.1f ms\n",
               mls["max_error_vs_double_m"].get<double>(), mls["skin_build_ms"].get<double>());
+  if (r.contains("spline")) {
+    const auto& spline = r["spline"];
+    std::printf(
+        "  spline skin     %8.3f ms median (%.0f vertices/ms), %zu B/vertex, %.1fx idw's time; "
+        "build %.1f ms, %.1f MB + reverse index %.1f MB\n",
+        spline["ms"].get<double>(), spline["vertices_per_ms"].get<double>(),
+        spline["bytes_per_vertex"].get<std::size_t>(), spline["ms_vs_idw"].get<double>(),
+        spline["skin_build_ms"].get<double>(),
+        static_cast<double>(spline["skin_bytes"].get<std::size_t>()) / 1e6,
+        static_cast<double>(spline["skin_reverse_index_bytes"].get<std::size_t>()) / 1e6);
+  }
 }
 
 }  // namespace
@@ -78,6 +89,8 @@ void registerBenchCommands(CLI::App& app) {
       ->add_option("--rounds", flags->options.rounds,
                    "Rounds alternating the plain kernel and the project's pass")
       ->capture_default_str();
+  embed->add_flag("--spline", flags->options.spline,
+                  "Also time the spline skin (every control point on every vertex; up to 256 points)");
   embed->add_flag("--json", flags->json, "Print one JSON object");
   embed->callback([flags] { runEmbed(*flags); });
 

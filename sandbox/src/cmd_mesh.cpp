@@ -39,7 +39,8 @@ void runMeshInfo(const MeshInfoFlags& flags) {
   options.skin = {flags.alpha, flags.k, flags.threads,
                   deform::preferredSkinMethod(flags.control_points, flags.k)};
   if (flags.skin_method != "auto" && !deform::parseSkinMethod(flags.skin_method, options.skin.method))
-    throw deform::InputError("--skin-method: must be auto, idw or mls (got '" + flags.skin_method + "')");
+    throw deform::InputError("--skin-method: must be auto, idw, mls or spline (got '" + flags.skin_method +
+                             "')");
   // Every flag checked before the mesh is loaded (a large file takes seconds).
   const deform::VehicleModel model = deform::loadVehicleModel(flags.mesh, flags.load.importOptions());
   const auto report = meshReport(model, options);

@@ -168,6 +168,9 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
                                   {"max", *std::max_element(v.begin(), v.end())}};
   };
   nlohmann::ordered_json r;
+  if (o.spline && control.points_m.size() > deform::kSplineMostControlPoints)
+    throw deform::InputError("--spline: at most " + std::to_string(deform::kSplineMostControlPoints) +
+                             " control points (dense weights)");
   r["vertices"] = rest.size();
   r["control_points"] = control.points_m.size();
   r["k"] = skin.influences();
@@ -204,6 +207,20 @@ nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& o) {
               {"speedup_vs_plain", spread(ratio_mls)},
               {"max_error_vs_double_m", mls_disagreement_m},
               {"skin_bytes", mls.memoryBytes()}};
+  if (o.spline) {
+    double spline_build_ms = 0;
+    const deform::Skin spline =
+        buildSkin(deform::SkinMethod::spline, deform::SkinLayout::compact, &spline_build_ms);
+    const double spline_ms = medianMs(
+        o.repetitions, [&] { spline.deform(rest.data(), displacement.data(), out_other.data(), threads); });
+    r["spline"] = {{"skin_build_ms", spline_build_ms},
+                   {"ms", spline_ms},
+                   {"vertices_per_ms", static_cast<double>(rest.size()) / spline_ms},
+                   {"bytes_per_vertex", spline.bytesPerVertex()},
+                   {"ms_vs_idw", spline_ms / ms},
+                   {"skin_bytes", spline.memoryBytes()},
+                   {"skin_reverse_index_bytes", spline.reverseIndexBytes()}};
+  }
   return r;
 }
 

@@ -338,7 +338,8 @@ TEST_CASE("the backstop: rigid parts by default, boxes of the scene's own, or th
              Catch::Contains("vehicle.deformation.rigid_parts: applies to backstop rigid_parts"));
 }
 
-TEST_CASE("vehicle.deformation.skin_method takes auto, idw or mls and refuses anything else", "[scenes]") {
+TEST_CASE("vehicle.deformation.skin_method takes auto, idw, mls or spline and refuses anything else",
+          "[scenes]") {
   json doc = minimalScene();
   // The default, auto: the skin measured best at the car's level of detail (mls up to 60 points).
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.skin_method_auto);
@@ -382,4 +383,11 @@ TEST_CASE("vehicle.deformation.skin_method takes auto, idw or mls and refuses an
              Catch::Contains("test.json: vehicle.deformation.skin_method: unknown value 'rbf'"));
   doc["vehicle"]["deformation"]["skin_method"] = 2;
   CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.skin_method"));
+  // The spline, named only (auto never takes it): dense weights, so at most 256 control points, refused
+  // past that by the key's name rather than when the skin is built.
+  doc["vehicle"]["deformation"]["skin_method"] = "spline";
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
+        deform::SkinMethod::spline);
+  doc["vehicle"]["deformation"]["control_points"] = 300;
+  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.skin_method: spline weights are dense"));
 }

@@ -7,7 +7,9 @@
 //   mls: moving least squares with an affine fit, the same inverse distances as its weight less the one
 //        the (K+1)-th nearest point would have, so that the weights are continuous where the K nearest
 //        change (Schaefer, McPhail & Warren 2006, affine case): sum_i w_ij = 1 and sum_i w_ij c_i0 = v_j, so
-//        any affine motion of the control points moves the vertices by that same map (linear precision).
+//        any affine motion of the control points moves the vertices by that same map (linear precision);
+//   spline: the cubic polyharmonic spline through every control point with a linear part (Duchon 1977):
+//        affine maps exact, interpolating, twice differentiable, but dense (every point on every vertex).
 #include <deform/parallel.hpp>
 
 #include <Eigen/Core>
@@ -21,11 +23,18 @@ namespace deform {
 enum class SkinMethod : uint8_t {
   idw,  ///< normalised inverse distance (Kenwright 2015): translations only; weights in [0, 1]
   mls,  ///< moving least squares, affine (Schaefer et al. 2006): affine maps exact; weights may be < 0
+  /// Cubic polyharmonic spline with a linear part through all N points (Duchon 1977): affine maps exact,
+  /// every point on every vertex (K is N whatever k_nearest says); at most kSplineMostControlPoints.
+  spline,
 };
 
-/// "idw" or "mls"; the name of a method.
+/// The most control points a spline skin takes: its weights are dense, N per vertex (4 bytes each up to
+/// 256 points), so 20,000 vertices at 256 points hold 20 MB of weights against 0.5 MB at K = 8.
+inline constexpr std::size_t kSplineMostControlPoints = 256;
+
+/// "idw", "mls" or "spline"; the name of a method.
 const char* skinMethodName(SkinMethod method);
-/// The method named `name` ("idw" or "mls"), or false when there is none.
+/// The method named `name` ("idw", "mls" or "spline"), or false when there is none.
 bool parseSkinMethod(const std::string& name, SkinMethod& method);
 
 /// The largest level of detail at which mls is the better skin [control points]. On the built-in sedan
@@ -74,7 +83,8 @@ struct SkinOptions {
 /// control-point index and a weight. Slots past the used ones carry weight 0 (index 0).
 class Skin {
  public:
-  /// Throws InputError for alpha outside (0, 64], no control points or a non-finite position.
+  /// Throws InputError for alpha outside (0, 64], no control points or a non-finite position, and for a
+  /// spline past kSplineMostControlPoints points or on points that do not span three dimensions.
   static Skin build(const std::vector<Eigen::Vector3f>& vertices_m,
                     const std::vector<Eigen::Vector3d>& control_rest_m, const SkinOptions& options);
 

@@ -11,7 +11,7 @@ namespace sandbox {
 /// One skin (N, K, alpha, method) on one field, measured over the render mesh.
 struct SkinErrorRow {
   std::string field;               ///< "bend", "twist", "crush", "affine", "wall_crash"
-  std::string method;              ///< "idw" or "mls"
+  std::string method;              ///< "idw", "mls" or "spline" (k 0 and alpha 0: every point, no power)
   std::size_t control_points = 0;  ///< N as built (within 5 % of the target)
   std::size_t target_points = 0;   ///< N asked for
   std::size_t k = 0;               ///< influences per vertex

@@ -38,27 +38,33 @@ std::vector<T> distinct(const std::vector<SkinErrorRow>& rows, T SkinErrorRow::*
 
 void targetTable(std::ostringstream& md, const std::vector<SkinErrorRow>& rows, std::size_t n) {
   md << "\n### The target: mls halves the RMS error of idw at N = " << n << ", K = " << kK
-     << ", alpha = " << kAlpha << "\n\n"
-     << "| field | largest motion mm | idw RMS mm | mls RMS mm | mls / idw | idw max mm | mls max mm "
-        "| halved? |\n|---|---|---|---|---|---|---|---|\n";
+     << ", alpha = " << kAlpha << " (and the spline, every point on every vertex, beside them)\n\n"
+     << "| field | largest motion mm | idw RMS mm | mls RMS mm | mls / idw | spline RMS mm | spline / idw "
+        "| idw max mm | mls max mm | spline max mm | halved by mls? | by the spline? |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const char* field : kFields) {
     const SkinErrorRow* idw = findSkinErrorRow(rows, field, "idw", n, kK, kAlpha);
     const SkinErrorRow* mls = findSkinErrorRow(rows, field, "mls", n, kK, kAlpha);
     if (!idw || !mls) continue;
+    const SkinErrorRow* spline = findSkinErrorRow(rows, field, "spline", n, 0, 0.0);
     const double ratio = mls->rms_error_m / idw->rms_error_m;
+    const double spline_ratio = spline ? spline->rms_error_m / idw->rms_error_m : NAN;
     md << "| " << field << " | " << CsvTable::fixed(1e3 * idw->field_max_m, 0) << " | "
        << mm(idw->rms_error_m) << " | " << mm(mls->rms_error_m) << " | " << CsvTable::fixed(ratio, 3) << " | "
-       << mm(idw->max_error_m) << " | " << mm(mls->max_error_m) << " | " << (ratio <= 0.5 ? "**yes**" : "no")
-       << " |\n";
+       << (spline ? mm(spline->rms_error_m) : "") << " | " << (spline ? CsvTable::fixed(spline_ratio, 3) : "")
+       << " | " << mm(idw->max_error_m) << " | " << mm(mls->max_error_m) << " | "
+       << (spline ? mm(spline->max_error_m) : "") << " | " << (ratio <= 0.5 ? "**yes**" : "no") << " | "
+       << (spline ? (spline_ratio <= 0.5 ? "**yes**" : "no") : "") << " |\n";
   }
 }
 
 void trendTable(std::ostringstream& md, const std::vector<SkinErrorRow>& rows, bool largest) {
   md << "\n### " << (largest ? "Largest" : "RMS") << " vertex error [mm] against N (K = " << kK
      << ", alpha = " << kAlpha << ")\n\n| N (built) |";
-  for (const char* field : kFields) md << " " << field << " idw | " << field << " mls |";
+  for (const char* field : kFields)
+    md << " " << field << " idw | " << field << " mls | " << field << " spline |";
   md << "\n|---|";
-  for (std::size_t i = 0; i < 2 * std::size(kFields); ++i) md << "---|";
+  for (std::size_t i = 0; i < 3 * std::size(kFields); ++i) md << "---|";
   md << "\n";
   for (const std::size_t n : distinct(rows, &SkinErrorRow::target_points)) {
     const SkinErrorRow* any = findSkinErrorRow(rows, "bend", "idw", n, kK, kAlpha);
@@ -69,6 +75,9 @@ void trendTable(std::ostringstream& md, const std::vector<SkinErrorRow>& rows, b
         const SkinErrorRow* r = findSkinErrorRow(rows, field, method, n, kK, kAlpha);
         md << " " << (r ? mm(largest ? r->max_error_m : r->rms_error_m) : "") << " |";
       }
+      // Past kSplineMostControlPoints there is no spline: the cell stays empty.
+      const SkinErrorRow* spline = findSkinErrorRow(rows, field, "spline", n, 0, 0.0);
+      md << " " << (spline ? mm(largest ? spline->max_error_m : spline->rms_error_m) : "") << " |";
     }
     md << "\n";
   }
@@ -117,7 +126,7 @@ void plotErrors(const std::vector<SkinErrorRow>& rows, const std::string& dir, b
     dat << "# N";
     for (const char* method : kMethods)
       for (const std::size_t k : ks) dat << " " << method << "_K" << k;
-    dat << "\n";
+    dat << " spline\n";
     for (const std::size_t n : distinct(rows, &SkinErrorRow::target_points)) {
       const SkinErrorRow* any = findSkinErrorRow(rows, field, "idw", n, ks.front(), kAlpha);
       if (!any) continue;
@@ -129,6 +138,11 @@ void plotErrors(const std::vector<SkinErrorRow>& rows, const std::string& dir, b
           dat << " " << std::max(1e3 * e_m, 1e-5);  // log axis: float rounding floor
         }
       }
+      const SkinErrorRow* spline = findSkinErrorRow(rows, field, "spline", n, 0, 0.0);
+      if (spline)
+        dat << " " << std::max(1e3 * (largest ? spline->max_error_m : spline->rms_error_m), 1e-5);
+      else
+        dat << " NaN";  // past kSplineMostControlPoints: no point
       dat << "\n";
     }
     scenes::writeFileAtomically(data, dat.str());
@@ -143,7 +157,8 @@ void plotErrors(const std::vector<SkinErrorRow>& rows, const std::string& dir, b
            << kMethods[m] << " K=" << ks[i] << "'";
       }
     }
-    gp << "\n";
+    gp << ", \\\n  " << gnuplotQuoted(data) << " using 1:" << column
+       << " with linespoints lw 2.5 dt 1 pt 9 ps 1.1 lc rgb '#2ca02c' title 'spline (every point)'\n";
   }
   gp << "unset multiplot\n";
   if (runGnuplot(base + ".gp", gp.str())) std::printf("wrote %s.png\n", base.c_str());
