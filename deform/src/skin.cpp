@@ -11,6 +11,7 @@
 #include <string>
 
 #include "nearest_points.hpp"
+#include "skin_lattice.hpp"
 #include "skin_spline.hpp"
 #include "skin_weights.hpp"
 
@@ -48,16 +49,19 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
 
   const std::size_t n = control_rest_m.size();
   if (options.method == SkinMethod::spline && n > kSplineMostControlPoints)
-    throw InputError("skin: spline weights are dense (every control point on every vertex): at most " +
-                     std::to_string(kSplineMostControlPoints) + " control points (got " + std::to_string(n) +
-                     "); idw or mls take any number");
+    throw InputError(
+        "skin: spline through every control point (a dense system, evaluated at every lattice "
+        "node each frame): at most " +
+        std::to_string(kSplineMostControlPoints) + " control points (got " + std::to_string(n) +
+        "); idw or mls take any number");
   Skin skin;
   skin.vertex_count_ = vertices_m.size();
   skin.control_count_ = n;
   skin.alpha_ = options.alpha;
   skin.method_ = options.method;
-  skin.influences_ =
-      options.k_nearest == 0 || options.method == SkinMethod::spline ? n : std::min(options.k_nearest, n);
+  skin.influences_ = options.method == SkinMethod::spline ? detail::kLatticeSlots
+                     : options.k_nearest == 0             ? n
+                                                          : std::min(options.k_nearest, n);
   skin.layout_ = options.layout;
   const std::size_t slots = skin.vertex_count_ * skin.influences_;
   // Built in float and 32-bit indices, then re-stored in the layout asked for (skin_layout.cpp).
@@ -66,17 +70,28 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
 
   const std::size_t K = skin.influences_;
   if (options.method == SkinMethod::spline) {
+    // The spline at the lattice's nodes (dense, N per node), the vertices on the nodes (27 slots each).
     const detail::SplineWeights spline(control_rest_m);
-    parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-      std::vector<double> weight(n);
-      for (std::size_t j = begin; j < end; ++j) {
-        spline.weigh(vertices_m[j].cast<double>(), weight.data());
-        for (std::size_t k = 0; k < n; ++k) {
-          built_indices[j * n + k] = static_cast<uint32_t>(k);
-          built_weights[j * n + k] = static_cast<float>(weight[k]);
-        }
+    const detail::BsplineLattice lattice = detail::bsplineLattice(vertices_m);
+    skin.node_count_ = lattice.nodes_m.size();
+    skin.node_from_control_.resize(skin.node_count_ * n);
+    parallelFor(skin.node_count_, options.threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<double> row(n);
+      for (std::size_t node = begin; node < end; ++node) {
+        spline.weigh(lattice.nodes_m[node], row.data());
+        for (std::size_t i = 0; i < n; ++i)
+          skin.node_from_control_[i * skin.node_count_ + node] = static_cast<float>(row[i]);
       }
     });
+    for (std::size_t node = 0; node < skin.node_count_; ++node) {
+      double gain = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        gain += std::abs(static_cast<double>(skin.node_from_control_[i * skin.node_count_ + node]));
+      skin.displacement_gain_ = std::max(skin.displacement_gain_, gain);
+    }
+    skin.nonnegative_weights_ = false;  // the spline's weights change sign between the points
+    built_indices = lattice.indices;
+    built_weights = lattice.weights;
   } else {
     // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
     const bool use_tree = K < n && n > 32;
@@ -159,6 +174,17 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
     });
   }
   skin.storeCompact(built_weights, built_indices);
+  if (skin.node_count_ > 0) return skin;  // every vertex follows every point: no reverse index to keep
+  // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
+  // negative weights.
+  for (std::size_t j = 0; j < skin.vertex_count_; ++j) {
+    double gain = 0;
+    for (std::size_t k = 0; k < K; ++k) {
+      gain += std::abs(skin.slotWeight(j, k));
+      skin.nonnegative_weights_ = skin.nonnegative_weights_ && skin.slotWeight(j, k) >= 0;
+    }
+    skin.displacement_gain_ = std::max(skin.displacement_gain_, gain);
+  }
   // Reverse index (counting sort by control point); slots with zero weight (after rounding) influence
   // nothing.
   skin.influenced_begin_.assign(n + 1, 0);
@@ -176,6 +202,13 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
 }
 
 float Skin::weight(std::size_t j, uint32_t i) const {
+  if (node_count_ > 0) {
+    double through_nodes = 0;
+    for (std::size_t k = 0; k < influences_; ++k)
+      through_nodes += static_cast<double>(slotWeight(j, k)) *
+                       static_cast<double>(node_from_control_[i * node_count_ + slotIndex(j, k)]);
+    return static_cast<float>(through_nodes);
+  }
   for (std::size_t k = 0; k < influences_; ++k)
     if (slotIndex(j, k) == i) return slotWeight(j, k);
   return 0.0f;

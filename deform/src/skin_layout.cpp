@@ -49,11 +49,12 @@ void roundToExactSum(const float* w, std::size_t K, int64_t scale, int64_t lowes
 
 void Skin::storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices) {
   const std::size_t K = influences_, slots = weights.size();
-  const bool narrow = control_count_ <= 256, wide = control_count_ > 65536;
+  const std::size_t targets = node_count_ > 0 ? node_count_ : control_count_;  // what the slots index
+  const bool narrow = targets <= 256, wide = targets > 65536;
   weight_format_ = WeightFormat::float32;
   weight_scale_ = 1;
-  if (layout_ == SkinLayout::compact && method_ == SkinMethod::idw) {
-    weight_format_ = WeightFormat::unorm16;  // idw weights lie in [0, 1]
+  if (layout_ == SkinLayout::compact && (method_ == SkinMethod::idw || method_ == SkinMethod::spline)) {
+    weight_format_ = WeightFormat::unorm16;  // idw's and the lattice's B-spline weights lie in [0, 1]
     weight_scale_ = 65535;
   } else if (layout_ == SkinLayout::compact && narrow) {
     // mls: signed weights, 24 bits; the scale a power of two that keeps the largest weight in range, at
@@ -120,9 +121,9 @@ float Skin::slotWeight(std::size_t j, std::size_t k) const {
 }
 
 std::size_t Skin::memoryBytes() const {
-  return weights_.size() * sizeof(float) + weights16_.size() * sizeof(uint16_t) +
-         packed_.size() * sizeof(uint32_t) + indices8_.size() + indices16_.size() * sizeof(uint16_t) +
-         indices32_.size() * sizeof(uint32_t);
+  return node_from_control_.size() * sizeof(double) + weights_.size() * sizeof(float) +
+         weights16_.size() * sizeof(uint16_t) + packed_.size() * sizeof(uint32_t) + indices8_.size() +
+         indices16_.size() * sizeof(uint16_t) + indices32_.size() * sizeof(uint32_t);
 }
 
 std::size_t Skin::reverseIndexBytes() const {

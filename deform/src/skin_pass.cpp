@@ -3,6 +3,7 @@
 // Streaming (non-temporal) stores of the output were tried and did not pay here (docs/BENCHMARKS.md).
 #include <deform/skin.hpp>
 
+#include <algorithm>
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -178,6 +179,8 @@ void dispatchK(const Slots& slots, std::size_t K, const Eigen::Vector3f* rest, c
       return deformRangeImpl<8>(slots, K, rest, d, out, begin, end);
     case 16:
       return deformRangeImpl<16>(slots, K, rest, d, out, begin, end);
+    case 27:  // the spline's lattice (skin_lattice.hpp)
+      return deformRangeImpl<27>(slots, K, rest, d, out, begin, end);
     default:
       return deformRangeImpl<0>(slots, K, rest, d, out, begin, end);
   }
@@ -221,9 +224,38 @@ void Skin::deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, 
   }
 }
 
+std::vector<float, Eigen::aligned_allocator<float>> Skin::slotTable(const Eigen::Vector3d* displacement_m,
+                                                                    unsigned threads) const {
+  if (node_count_ == 0) return scaledTable(displacement_m, control_count_, weight_scale_);
+  // The spline at the lattice's nodes: point by point, each adding its weight on every node times its
+  // displacement (a loop over nodes the compiler vectorises), so every node sums its points in index order
+  // whatever the threads split: the same bits on any thread count.
+  std::vector<float, Eigen::aligned_allocator<float>> table(4 * node_count_, 0.0f);
+  const float inverse = static_cast<float>(1.0 / static_cast<double>(weight_scale_));
+  parallelFor(node_count_, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> x(end - begin, 0.0f), y(end - begin, 0.0f), z(end - begin, 0.0f);
+    for (std::size_t i = 0; i < control_count_; ++i) {
+      const float* w = &node_from_control_[i * node_count_ + begin];
+      const Eigen::Vector3f d = displacement_m[i].cast<float>();
+      for (std::size_t n = 0; n < end - begin; ++n) {
+        x[n] += w[n] * d.x();
+        y[n] += w[n] * d.y();
+        z[n] += w[n] * d.z();
+      }
+    }
+    for (std::size_t n = 0; n < end - begin; ++n) {
+      float* t = &table[4 * (begin + n)];
+      t[0] = x[n] * inverse;
+      t[1] = y[n] * inverse;
+      t[2] = z[n] * inverse;
+    }
+  });
+  return table;
+}
+
 void Skin::deform(const Eigen::Vector3f* rest_m, const Eigen::Vector3d* displacement_m,
                   Eigen::Vector3f* out_m, unsigned threads) const {
-  const auto table = scaledTable(displacement_m, control_count_, weight_scale_);
+  const auto table = slotTable(displacement_m, threads);
   parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {
     deformRange(rest_m, table.data(), out_m, begin, end);
   });
@@ -235,6 +267,16 @@ std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector
   std::vector<uint8_t> local;
   std::vector<uint8_t>& dirty = recomputed_flags ? *recomputed_flags : local;
   dirty.assign(vertex_count_, 0);
+  if (node_count_ > 0) {  // the spline: a point that moves moves every node, so every vertex
+    if (std::find(moved.begin(),
+                  moved.begin() + static_cast<std::ptrdiff_t>(std::min(moved.size(), control_count_)),
+                  uint8_t{1}) ==
+        moved.begin() + static_cast<std::ptrdiff_t>(std::min(moved.size(), control_count_)))
+      return 0;
+    deform(rest_m, displacement_m, out_m, threads);
+    dirty.assign(vertex_count_, 1);
+    return vertex_count_;
+  }
   std::size_t influenced = 0;
   for (std::size_t i = 0; i < control_count_ && i < moved.size(); ++i) {
     if (!moved[i]) continue;
@@ -243,7 +285,7 @@ std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector
     influenced += influenced_begin_[i + 1] - influenced_begin_[i];
   }
   if (influenced == 0) return 0;
-  const auto table = scaledTable(displacement_m, control_count_, weight_scale_);
+  const auto table = slotTable(displacement_m, threads);
   std::size_t recomputed = 0;
   for (uint8_t flag : dirty) recomputed += flag;
   parallelFor(vertex_count_, threads, [&](std::size_t begin, std::size_t end) {

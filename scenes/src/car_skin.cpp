@@ -32,17 +32,10 @@ std::shared_ptr<const CarSkin::Build> CarSkin::share(const deform::Mesh& body,
     build->rest_normals = body.normals;
   build->grid = deform::VertexGrid(body.positions_m);
   build->interior_m = 0.5 * (build->grid.bounds().min_m + build->grid.bounds().max_m);
-  // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
-  // negative weights.
-  const deform::Skin& weights = *build->skin;
-  for (std::size_t j = 0; j < weights.vertexCount(); ++j) {
-    double gain = 0;
-    for (std::size_t k = 0; k < weights.influences(); ++k) {
-      gain += std::abs(weights.slotWeight(j, k));
-      build->nonnegative_weights = build->nonnegative_weights && weights.slotWeight(j, k) >= 0;
-    }
-    build->displacement_gain = std::max(build->displacement_gain, gain);
-  }
+  // |v - v0| <= gain x max_i |d_i| (deform::Skin::displacementGain): 1 for idw, more for mls's negative
+  // weights and the spline's.
+  build->nonnegative_weights = build->skin->nonnegativeWeights();
+  build->displacement_gain = build->skin->displacementGain();
   return build;
 }
 

@@ -128,9 +128,11 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
     d.skin_method_auto = skin_method == "auto";
     if (!d.skin_method_auto) deform::parseSkinMethod(skin_method, s.skin_method);
     if (skin_method == "spline" && s.control_points > deform::kSplineMostControlPoints)
-      object->fail("skin_method", "spline weights are dense (every control point on every vertex): at most " +
-                                      std::to_string(deform::kSplineMostControlPoints) +
-                                      " control points (got " + std::to_string(s.control_points) + ")");
+      object->fail("skin_method",
+                   "spline through every control point (evaluated at every lattice node each "
+                   "frame): at most " +
+                       std::to_string(deform::kSplineMostControlPoints) + " control points (got " +
+                       std::to_string(s.control_points) + ")");
     s.substeps = static_cast<int>(object->integer("substeps", s.substeps, 1, 64));
     s.iterations = static_cast<int>(object->integer("iterations", s.iterations, 1, 64));
     s.max_deviation_m = object->number("max_deviation_m", s.max_deviation_m, 1e-4, 10);

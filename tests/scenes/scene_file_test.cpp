@@ -389,5 +389,6 @@ TEST_CASE("vehicle.deformation.skin_method takes auto, idw, mls or spline and re
   CHECK(scenes::parseScene(doc, "test.json").vehicles[0].deformation.settings.skin_method ==
         deform::SkinMethod::spline);
   doc["vehicle"]["deformation"]["control_points"] = 300;
-  CHECK_THAT(refusal(doc), Catch::Contains("vehicle.deformation.skin_method: spline weights are dense"));
+  CHECK_THAT(refusal(doc),
+             Catch::Contains("vehicle.deformation.skin_method: spline through every control point"));
 }

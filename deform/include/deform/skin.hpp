@@ -8,8 +8,10 @@
 //        the (K+1)-th nearest point would have, so that the weights are continuous where the K nearest
 //        change (Schaefer, McPhail & Warren 2006, affine case): sum_i w_ij = 1 and sum_i w_ij c_i0 = v_j, so
 //        any affine motion of the control points moves the vertices by that same map (linear precision);
-//   spline: the cubic polyharmonic spline through every control point with a linear part (Duchon 1977):
-//        affine maps exact, interpolating, twice differentiable, but dense (every point on every vertex).
+//   spline: the cubic polyharmonic spline through every control point with a linear part (Duchon 1977),
+//        evaluated each frame at the nodes of a lattice around the mesh, each vertex following the 27
+//        nodes around it by quadratic B-spline weights: affine maps exact, continuously differentiable,
+//        27 non-negative slots per vertex.
 #include <deform/parallel.hpp>
 
 #include <Eigen/Core>
@@ -23,13 +25,15 @@ namespace deform {
 enum class SkinMethod : uint8_t {
   idw,  ///< normalised inverse distance (Kenwright 2015): translations only; weights in [0, 1]
   mls,  ///< moving least squares, affine (Schaefer et al. 2006): affine maps exact; weights may be < 0
-  /// Cubic polyharmonic spline with a linear part through all N points (Duchon 1977): affine maps exact,
-  /// every point on every vertex (K is N whatever k_nearest says); at most kSplineMostControlPoints.
+  /// Cubic polyharmonic spline with a linear part through all N points (Duchon 1977), through a lattice:
+  /// affine maps exact; 27 slots per vertex over lattice nodes whatever k_nearest says, alpha not read;
+  /// at most kSplineMostControlPoints.
   spline,
 };
 
-/// The most control points a spline skin takes: its weights are dense, N per vertex (4 bytes each up to
-/// 256 points), so 20,000 vertices at 256 points hold 20 MB of weights against 0.5 MB at K = 8.
+/// The most control points a spline skin takes: each frame that moves a point evaluates the spline at
+/// every lattice node from every control point (2,250 nodes x N on the sedan), and its build solves a
+/// dense (N + 4) system.
 inline constexpr std::size_t kSplineMostControlPoints = 256;
 
 /// "idw", "mls" or "spline"; the name of a method.
@@ -94,7 +98,7 @@ class Skin {
   double alpha() const { return alpha_; }
   SkinMethod method() const { return method_; }
   SkinLayout layout() const { return layout_; }
-  /// Control point of slot k of vertex j (0 <= k < influences()).
+  /// Control point of slot k of vertex j (0 <= k < influences()); for a spline skin, the lattice node.
   uint32_t slotIndex(std::size_t j, std::size_t k) const;
   /// Weight of slot k of vertex j: slotWeightFixed / weightScale in the fixed-point forms.
   float slotWeight(std::size_t j, std::size_t k) const;
@@ -106,8 +110,17 @@ class Skin {
   int64_t weightScale() const { return weight_scale_; }
   /// Bytes per slot of the index (1, 2 or 4).
   std::size_t indexBytes() const { return index_bytes_; }
-  /// Weight of control point `i` on vertex `j` (0 when not among its influences).
+  /// Weight of control point `i` on vertex `j` (0 when not among its influences); for a spline skin, the
+  /// spline's weight through the lattice (every point has one).
   float weight(std::size_t j, uint32_t i) const;
+  /// Lattice nodes a spline skin's slots refer to (0 for idw and mls).
+  std::size_t latticeNodeCount() const { return node_count_; }
+  /// A bound on sum_i |w_ij| over the vertices: |v_j - v_j0| <= displacementGain() x max_i |d_i|. 1 for idw;
+  /// mls's largest slot sum; the spline's largest node sum (its weights through the lattice, some < 0).
+  double displacementGain() const { return displacement_gain_; }
+  /// Whether every control point's weight on every vertex is >= 0 (idw): a vertex moves within its
+  /// points' hull.
+  bool nonnegativeWeights() const { return nonnegative_weights_; }
   /// Bytes of the weights and indices.
   std::size_t memoryBytes() const;
   /// Bytes of the reverse index deformMoved uses (vertices each control point influences).
@@ -134,6 +147,10 @@ class Skin {
   /// The pass over vertices [begin, end); `scaled_xyz0` holds d_i / weightScale() as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
                    std::size_t begin, std::size_t end) const;
+  /// What the slots read: d_i / weightScale() as x, y, z, 0 floats per control point, or per lattice node
+  /// (the spline at the nodes) for a spline skin.
+  std::vector<float, Eigen::aligned_allocator<float>> slotTable(const Eigen::Vector3d* displacement_m,
+                                                                unsigned threads) const;
   /// The float weights (as built) re-stored in the layout asked for.
   void storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices);
 
@@ -153,6 +170,12 @@ class Skin {
   std::vector<float> weights_;       ///< float32: each vertex's sum is 1 to rounding (mls: some < 0)
   std::vector<uint16_t> weights16_;  ///< unorm16: weight x 65,535, each vertex's sum exactly 65,535
   std::vector<uint32_t> packed_;     ///< packed24: (weight x scale) << 8 | index, signed 24-bit weight
+  /// Spline: node_count_ lattice nodes and the spline's weight of each control point on each (point-major:
+  /// point i's weights on the nodes from i x node_count_); the slots then index nodes.
+  std::size_t node_count_ = 0;
+  std::vector<float> node_from_control_;  ///< float: 6e-8 of a weight, summed in double
+  double displacement_gain_ = 1;
+  bool nonnegative_weights_ = true;
   /// Reverse index for partial updates: the vertices control point i influences are
   /// influenced_vertices_[influenced_begin_[i] .. influenced_begin_[i + 1]).
   std::vector<std::size_t> influenced_begin_;
