@@ -58,13 +58,13 @@ void runEmbed(const EmbedFlags& flags) {
   if (r.contains("spline")) {
     const auto& spline = r["spline"];
     std::printf(
-        "  spline skin     %8.3f ms median (%.0f vertices/ms), %zu B/vertex, %.1fx idw's time; "
-        "build %.1f ms, %.1f MB + reverse index %.1f MB\n",
+        "  spline skin     %8.3f ms median (%.0f vertices/ms), %zu B/vertex, %.2fx idw's time (rounds "
+        "%.2f-%.2f)\n                  %zu lattice nodes, build %.1f ms, %.1f MB\n",
         spline["ms"].get<double>(), spline["vertices_per_ms"].get<double>(),
-        spline["bytes_per_vertex"].get<std::size_t>(), spline["ms_vs_idw"].get<double>(),
-        spline["skin_build_ms"].get<double>(),
-        static_cast<double>(spline["skin_bytes"].get<std::size_t>()) / 1e6,
-        static_cast<double>(spline["skin_reverse_index_bytes"].get<std::size_t>()) / 1e6);
+        spline["bytes_per_vertex"].get<std::size_t>(), spline["ms_vs_idw"]["median"].get<double>(),
+        spline["ms_vs_idw"]["min"].get<double>(), spline["ms_vs_idw"]["max"].get<double>(),
+        spline["lattice_nodes"].get<std::size_t>(), spline["skin_build_ms"].get<double>(),
+        static_cast<double>(spline["skin_bytes"].get<std::size_t>()) / 1e6);
   }
 }
 
@@ -90,7 +90,7 @@ void registerBenchCommands(CLI::App& app) {
                    "Rounds alternating the plain kernel and the project's pass")
       ->capture_default_str();
   embed->add_flag("--spline", flags->options.spline,
-                  "Also time the spline skin (every control point on every vertex; up to 256 points)");
+                  "Also time the spline skin (up to 256 control points), in the same rounds");
   embed->add_flag("--json", flags->json, "Print one JSON object");
   embed->callback([flags] { runEmbed(*flags); });
 

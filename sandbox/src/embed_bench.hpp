@@ -16,8 +16,7 @@ struct EmbedBenchOptions {
   double alpha = 3.5;
   int repetitions = 21;  ///< timed passes per round; the median is reported
   int rounds = 5;        ///< rounds, each timing every pass once (plain kernel, project), alternated
-  /// Also time the spline skin (dense: every control point on every vertex; up to 256 points), after the
-  /// rounds: its build and pass, as `spline`.
+  /// Also time the spline skin (up to 256 points) in the rounds: its build and pass, as `spline`.
   bool spline = false;
 };
 
@@ -27,7 +26,7 @@ struct EmbedBenchOptions {
 /// `float_layout` (the project's pass over float weights: the layout before), `baseline_aos_ms`,
 /// `skin_build_ms` and the set-up, all for the idw skin, and `mls` with the same figures for the
 /// moving-least-squares skin; with `spline`, `spline` {skin_build_ms, ms, vertices_per_ms, bytes_per_vertex,
-/// ms_vs_idw, skin_bytes, skin_reverse_index_bytes}.
+/// ms_vs_idw {median, min, max over the paired rounds}, lattice_nodes, skin_bytes}.
 nlohmann::ordered_json runEmbedBench(const EmbedBenchOptions& options);
 
 }  // namespace sandbox
