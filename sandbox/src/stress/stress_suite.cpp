@@ -190,6 +190,35 @@ std::vector<StressCase> skinAlpha(bool quick) {
       cases.push_back(c);
     }
   }
+  // The spline (no alpha): its weights through the lattice change sign, so a vertex moves at most their
+  // largest sum |w| (deform::Skin::displacementGain) times the farthest control point.
+  const auto start = Clock::now();
+  StressCase c{"skin_alpha", "spline",
+               "render mesh finite; every vertex moved no more than the skin's largest sum |w| times the "
+               "farthest control point"};
+  vehicle::DeformationSettings settings = run.simulation().deformationSettings(run.carId(0));
+  settings.skin_method = deform::SkinMethod::spline;
+  scenes::CarSkin skin(run.model(0).body, run.simulation().controlRestPoints(run.carId(0)), settings);
+  skin.update(displacements);
+  RunVerdict verdict;
+  const double gain = skin.skin().displacementGain();
+  double moved_max_m = 0, beyond_m = 0;
+  for (std::size_t j = 0; j < skin.positions().size(); ++j) {
+    const Eigen::Vector3f v = skin.positions()[j];
+    if (!v.allFinite()) {
+      verdict.fail("vertex " + std::to_string(j) + " not finite");
+      break;
+    }
+    const double moved_m = (v - skin.restPositions()[j]).cast<double>().norm();
+    beyond_m = std::max(beyond_m, moved_m - (gain * largest_m * (1 + 1e-5) + 1e-6));
+    moved_max_m = std::max(moved_max_m, moved_m);
+  }
+  if (beyond_m > 0) verdict.fail("a vertex moved beyond its bound");
+  c.passed = verdict.ok;
+  c.detail = verdict.text() + format("largest vertex move %.3f m (control %.3f m), largest sum |w| %.2f",
+                                     moved_max_m, largest_m, gain);
+  c.seconds = secondsSince(start);
+  cases.push_back(c);
   return cases;
 }
 
