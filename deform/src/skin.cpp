@@ -63,14 +63,8 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
                      : options.k_nearest == 0             ? n
                                                           : std::min(options.k_nearest, n);
   skin.layout_ = options.layout;
-  const std::size_t slots = skin.vertex_count_ * skin.influences_;
-  // Built in float and 32-bit indices, then re-stored in the layout asked for (skin_layout.cpp).
-  std::vector<uint32_t> built_indices(slots);
-  std::vector<float> built_weights(slots);
-
-  const std::size_t K = skin.influences_;
   if (options.method == SkinMethod::spline) {
-    // The spline at the lattice's nodes (dense, N per node), the vertices on the nodes (27 slots each).
+    // The spline at the lattice's nodes (dense, N per node), the vertices on the nodes (27 each).
     const detail::SplineWeights spline(control_rest_m);
     const detail::BsplineLattice lattice = detail::bsplineLattice(vertices_m);
     skin.node_count_ = lattice.nodes_m.size();
@@ -90,91 +84,94 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
       skin.displacement_gain_ = std::max(skin.displacement_gain_, gain);
     }
     skin.nonnegative_weights_ = false;  // the spline's weights change sign between the points
-    built_indices = lattice.indices;
-    built_weights = lattice.weights;
-  } else {
-    // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
-    const bool use_tree = K < n && n > 32;
-    std::optional<detail::PointKdTree> tree;
-    if (use_tree) tree.emplace(control_rest_m);
-    parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
-      std::vector<detail::RankedPoint> ranked, candidates;
-      std::vector<double> distance(K), weight(K);
-      std::vector<Eigen::Vector3d> point(K);
-      std::vector<uint32_t> chosen(K);
-      for (std::size_t j = begin; j < end; ++j) {
-        const Eigen::Vector3d v = vertices_m[j].cast<double>();
-        // mls: the (K+1)-th nearest too, at whose distance the fit's weights fall to zero (continuity).
-        const std::size_t asked = options.method == SkinMethod::mls && K < n ? K + 1 : K;
+    skin.storeSeparable(lattice.base, lattice.axis_weights, lattice.stride);
+    return skin;  // every vertex follows every point: no reverse index to keep
+  }
+  const std::size_t slots = skin.vertex_count_ * skin.influences_;
+  // Built in float and 32-bit indices, then re-stored in the layout asked for (skin_layout.cpp).
+  std::vector<uint32_t> built_indices(slots);
+  std::vector<float> built_weights(slots);
+
+  const std::size_t K = skin.influences_;
+  // Below a few dozen points, or dense, a scan of every point is as fast as a tree.
+  const bool use_tree = K < n && n > 32;
+  std::optional<detail::PointKdTree> tree;
+  if (use_tree) tree.emplace(control_rest_m);
+  parallelFor(skin.vertex_count_, options.threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<detail::RankedPoint> ranked, candidates;
+    std::vector<double> distance(K), weight(K);
+    std::vector<Eigen::Vector3d> point(K);
+    std::vector<uint32_t> chosen(K);
+    for (std::size_t j = begin; j < end; ++j) {
+      const Eigen::Vector3d v = vertices_m[j].cast<double>();
+      // mls: the (K+1)-th nearest too, at whose distance the fit's weights fall to zero (continuity).
+      const std::size_t asked = options.method == SkinMethod::mls && K < n ? K + 1 : K;
+      if (use_tree) {
+        tree->nearest(v, asked, ranked);
+      } else {
+        ranked.clear();
+        for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+        if (asked < n)
+          std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
+                           ranked.end());
+        ranked.resize(asked);
+        if (asked > K)  // the (K+1)-th nearest last
+          std::iter_swap(std::max_element(ranked.begin(), ranked.end()), ranked.end() - 1);
+      }
+      double cutoff_m = 0;
+      if (asked > K) {
+        cutoff_m = std::sqrt(ranked.back().distance2_m2);
+        ranked.pop_back();
+      }
+      // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
+      // among the nearest few dozen, then (a large flat side of the hull) among all.
+      if (options.method == SkinMethod::mls && K < n && detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
+        const std::vector<detail::RankedPoint> nearest = ranked;
+        bool widened = false;
         if (use_tree) {
-          tree->nearest(v, asked, ranked);
-        } else {
-          ranked.clear();
-          for (uint32_t i = 0; i < n; ++i) ranked.push_back({(control_rest_m[i] - v).squaredNorm(), i});
-          if (asked < n)
-            std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(asked - 1),
-                             ranked.end());
-          ranked.resize(asked);
-          if (asked > K)  // the (K+1)-th nearest last
-            std::iter_swap(std::max_element(ranked.begin(), ranked.end()), ranked.end() - 1);
+          tree->nearest(v, std::min(n, 4 * K + 16), candidates);
+          widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
         }
-        double cutoff_m = 0;
-        if (asked > K) {
-          cutoff_m = std::sqrt(ranked.back().distance2_m2);
-          ranked.pop_back();
-        }
-        // Affine MLS over points in a plane cannot follow a vertex off it: look further for one that can,
-        // among the nearest few dozen, then (a large flat side of the hull) among all.
-        if (options.method == SkinMethod::mls && K < n &&
-            detail::offsetOutOfSpan(v, control_rest_m, ranked)) {
-          const std::vector<detail::RankedPoint> nearest = ranked;
-          bool widened = false;
-          if (use_tree) {
-            tree->nearest(v, std::min(n, 4 * K + 16), candidates);
-            widened = detail::widenSpan(v, control_rest_m, ranked, candidates);
-          }
-          if (!widened) {
-            ranked = nearest;
-            candidates.clear();
-            for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
-            std::sort(candidates.begin(), candidates.end());
-            detail::widenSpan(v, control_rest_m, ranked, candidates);
-          }
-        }
-        auto weigh = [&] {
-          // Slots in index order: deterministic, and the displacement reads walk forward through memory.
-          std::sort(ranked.begin(), ranked.end(),
-                    [](const auto& a, const auto& b) { return a.index < b.index; });
-          for (std::size_t k = 0; k < K; ++k) {
-            chosen[k] = ranked[k].index;
-            distance[k] = std::sqrt(ranked[k].distance2_m2);
-            point[k] = control_rest_m[chosen[k]];
-          }
-          if (options.method != SkinMethod::mls) {
-            detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
-            return true;
-          }
-          return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
-                                                   weight.data(), cutoff_m);
-        };
-        // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
-        // not exact for affine maps: widen the points across their plane by their own extent and fit again.
-        if (!weigh() && K < n) {
+        if (!widened) {
+          ranked = nearest;
           candidates.clear();
           for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
           std::sort(candidates.begin(), candidates.end());
-          detail::widenSpan(v, control_rest_m, ranked, candidates, true);
-          weigh();
-        }
-        for (std::size_t k = 0; k < K; ++k) {
-          built_indices[j * K + k] = chosen[k];
-          built_weights[j * K + k] = static_cast<float>(weight[k]);
+          detail::widenSpan(v, control_rest_m, ranked, candidates);
         }
       }
-    });
-  }
+      auto weigh = [&] {
+        // Slots in index order: deterministic, and the displacement reads walk forward through memory.
+        std::sort(ranked.begin(), ranked.end(),
+                  [](const auto& a, const auto& b) { return a.index < b.index; });
+        for (std::size_t k = 0; k < K; ++k) {
+          chosen[k] = ranked[k].index;
+          distance[k] = std::sqrt(ranked[k].distance2_m2);
+          point[k] = control_rest_m[chosen[k]];
+        }
+        if (options.method != SkinMethod::mls) {
+          detail::inverseDistanceWeights(distance.data(), K, options.alpha, weight.data());
+          return true;
+        }
+        return detail::movingLeastSquaresWeights(v, point.data(), distance.data(), K, options.alpha,
+                                                 weight.data(), cutoff_m);
+      };
+      // A fit that had to be bounded (a vertex a few millimetres off points thinner still, at fine N) is
+      // not exact for affine maps: widen the points across their plane by their own extent and fit again.
+      if (!weigh() && K < n) {
+        candidates.clear();
+        for (uint32_t i = 0; i < n; ++i) candidates.push_back({(control_rest_m[i] - v).squaredNorm(), i});
+        std::sort(candidates.begin(), candidates.end());
+        detail::widenSpan(v, control_rest_m, ranked, candidates, true);
+        weigh();
+      }
+      for (std::size_t k = 0; k < K; ++k) {
+        built_indices[j * K + k] = chosen[k];
+        built_weights[j * K + k] = static_cast<float>(weight[k]);
+      }
+    }
+  });
   skin.storeCompact(built_weights, built_indices);
-  if (skin.node_count_ > 0) return skin;  // every vertex follows every point: no reverse index to keep
   // v - v0 = sum_i w_i d_i, so |v - v0| <= (sum_i |w_i|) max_i |d_i|: 1 for idw, more for mls's
   // negative weights.
   for (std::size_t j = 0; j < skin.vertex_count_; ++j) {

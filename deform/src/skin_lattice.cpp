@@ -31,27 +31,23 @@ BsplineLattice bsplineLattice(const std::vector<Eigen::Vector3f>& vertices_m) {
       for (int i = 0; i < across[0]; ++i)
         lattice.nodes_m.push_back(
             low + Eigen::Vector3d((i - 0.5) * step_m[0], (j - 0.5) * step_m[1], (k - 0.5) * step_m[2]));
-  lattice.indices.reserve(kLatticeSlots * vertices_m.size());
-  lattice.weights.reserve(kLatticeSlots * vertices_m.size());
+  lattice.stride[0] = 1;
+  lattice.stride[1] = static_cast<uint32_t>(across[0]);
+  lattice.stride[2] = static_cast<uint32_t>(across[0] * across[1]);
+  lattice.base.reserve(vertices_m.size());
+  lattice.axis_weights.reserve(9 * vertices_m.size());
   for (const auto& v : vertices_m) {
     const Eigen::Vector3d t = (v.cast<double>() - low).cwiseQuotient(step_m);
-    int first[3];  // stored index of node c - 1
-    double w[3][3];
+    uint32_t base = 0;
     for (int a = 0; a < 3; ++a) {
       const int c = std::clamp(static_cast<int>(std::floor(t[a])), 0, cells[a] - 1);
       const double f = std::clamp(t[a] - c, 0.0, 1.0);
-      first[a] = c;  // node c - 1 is stored at c
-      w[a][0] = 0.5 * (1 - f) * (1 - f);
-      w[a][1] = 0.5 + f * (1 - f);
-      w[a][2] = 0.5 * f * f;
+      base += static_cast<uint32_t>(c) * lattice.stride[a];  // node c - 1 is stored at c
+      lattice.axis_weights.push_back(static_cast<float>(0.5 * (1 - f) * (1 - f)));
+      lattice.axis_weights.push_back(static_cast<float>(0.5 + f * (1 - f)));
+      lattice.axis_weights.push_back(static_cast<float>(0.5 * f * f));
     }
-    for (int dk = 0; dk < 3; ++dk)
-      for (int dj = 0; dj < 3; ++dj)
-        for (int di = 0; di < 3; ++di) {
-          lattice.indices.push_back(static_cast<uint32_t>(
-              ((first[2] + dk) * across[1] + first[1] + dj) * across[0] + first[0] + di));
-          lattice.weights.push_back(static_cast<float>(w[0][di] * w[1][dj] * w[2][dk]));
-        }
+    lattice.base.push_back(base);
   }
   return lattice;
 }

@@ -20,11 +20,13 @@ inline constexpr int kLatticeCellsOnLongestSide = 32;
 /// Nodes a vertex follows: 3 x 3 x 3 around it.
 inline constexpr std::size_t kLatticeSlots = 27;
 
-/// A box lattice around the vertices and each vertex's weights over its 27 nearest nodes.
+/// A box lattice around the vertices and each vertex's weights over its 27 nearest nodes, kept separable:
+/// the weight of node (c_x - 1 + a, c_y - 1 + b, c_z - 1 + c) is wx[a] wy[b] wz[c].
 struct BsplineLattice {
   std::vector<Eigen::Vector3d> nodes_m;  ///< at the cells' centres and one ring beyond; x fastest, then y, z
-  std::vector<uint32_t> indices;         ///< kLatticeSlots per vertex
-  std::vector<float> weights;            ///< kLatticeSlots per vertex, >= 0, summing to 1
+  uint32_t stride[3] = {1, 1, 1};        ///< node index step along x, y and z
+  std::vector<uint32_t> base;            ///< per vertex: its first node, (c_x - 1, c_y - 1, c_z - 1)
+  std::vector<float> axis_weights;  ///< 9 per vertex: wx[0..2], wy[0..2], wz[0..2], each >= 0 summing to 1
 };
 
 /// The lattice of `vertices_m`: their bounding box, grown by a thousandth of its longest side, in cubic

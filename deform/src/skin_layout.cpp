@@ -49,12 +49,11 @@ void roundToExactSum(const float* w, std::size_t K, int64_t scale, int64_t lowes
 
 void Skin::storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices) {
   const std::size_t K = influences_, slots = weights.size();
-  const std::size_t targets = node_count_ > 0 ? node_count_ : control_count_;  // what the slots index
-  const bool narrow = targets <= 256, wide = targets > 65536;
+  const bool narrow = control_count_ <= 256, wide = control_count_ > 65536;
   weight_format_ = WeightFormat::float32;
   weight_scale_ = 1;
-  if (layout_ == SkinLayout::compact && (method_ == SkinMethod::idw || method_ == SkinMethod::spline)) {
-    weight_format_ = WeightFormat::unorm16;  // idw's and the lattice's B-spline weights lie in [0, 1]
+  if (layout_ == SkinLayout::compact && method_ == SkinMethod::idw) {
+    weight_format_ = WeightFormat::unorm16;  // idw weights lie in [0, 1]
     weight_scale_ = 65535;
   } else if (layout_ == SkinLayout::compact && narrow) {
     // mls: signed weights, 24 bits; the scale a power of two that keeps the largest weight in range, at
@@ -101,13 +100,40 @@ void Skin::storeCompact(const std::vector<float>& weights, const std::vector<uin
   }
 }
 
+void Skin::storeSeparable(const std::vector<uint32_t>& base, const std::vector<float>& axis_weights,
+                          const uint32_t stride[3]) {
+  weight_format_ = WeightFormat::separable;
+  constexpr int64_t kAxisScale = 65535;
+  weight_scale_ = kAxisScale * kAxisScale * kAxisScale;  // a slot's weight: the product of three
+  index_bytes_ = 4;
+  lattice_base_ = base;
+  for (int a = 0; a < 3; ++a) lattice_stride_[a] = stride[a];
+  lattice_weights_.resize(axis_weights.size());
+  int64_t q[3];
+  std::vector<std::size_t> order;
+  std::vector<double> remainder;
+  for (std::size_t g = 0; g < axis_weights.size(); g += 3) {
+    // Each axis's three sum exactly to the scale, so the 27 products sum exactly to the scale cubed.
+    roundToExactSum(&axis_weights[g], 3, kAxisScale, 0, kAxisScale, q, order, remainder);
+    for (std::size_t k = 0; k < 3; ++k) lattice_weights_[g + k] = static_cast<uint16_t>(q[k]);
+  }
+}
+
 uint32_t Skin::slotIndex(std::size_t j, std::size_t k) const {
+  if (weight_format_ == WeightFormat::separable)
+    return lattice_base_[j] + static_cast<uint32_t>(k % 3) * lattice_stride_[0] +
+           static_cast<uint32_t>(k / 3 % 3) * lattice_stride_[1] +
+           static_cast<uint32_t>(k / 9) * lattice_stride_[2];
   const std::size_t s = j * influences_ + k;
   if (weight_format_ == WeightFormat::packed24) return packed_[s] & 0xFFu;
   return index_bytes_ == 1 ? indices8_[s] : index_bytes_ == 2 ? indices16_[s] : indices32_[s];
 }
 
 int64_t Skin::slotWeightFixed(std::size_t j, std::size_t k) const {
+  if (weight_format_ == WeightFormat::separable) {
+    const uint16_t* w = &lattice_weights_[9 * j];
+    return int64_t{w[k % 3]} * int64_t{w[3 + k / 3 % 3]} * int64_t{w[6 + k / 9]};
+  }
   const std::size_t s = j * influences_ + k;
   if (weight_format_ == WeightFormat::unorm16) return weights16_[s];
   if (weight_format_ == WeightFormat::packed24)
@@ -121,7 +147,8 @@ float Skin::slotWeight(std::size_t j, std::size_t k) const {
 }
 
 std::size_t Skin::memoryBytes() const {
-  return node_from_control_.size() * sizeof(double) + weights_.size() * sizeof(float) +
+  return node_from_control_.size() * sizeof(float) + lattice_base_.size() * sizeof(uint32_t) +
+         lattice_weights_.size() * sizeof(uint16_t) + weights_.size() * sizeof(float) +
          weights16_.size() * sizeof(uint16_t) + packed_.size() * sizeof(uint32_t) + indices8_.size() +
          indices16_.size() * sizeof(uint16_t) + indices32_.size() * sizeof(uint32_t);
 }
@@ -131,6 +158,8 @@ std::size_t Skin::reverseIndexBytes() const {
 }
 
 std::size_t Skin::bytesPerVertex() const {
+  // The spline: its first node and 9 axis weights.
+  if (weight_format_ == WeightFormat::separable) return 2 * sizeof(Eigen::Vector3f) + sizeof(uint32_t) + 18;
   const std::size_t slot_bytes = weight_format_ == WeightFormat::packed24  ? 4
                                  : weight_format_ == WeightFormat::unorm16 ? index_bytes_ + 2
                                                                            : index_bytes_ + 4;

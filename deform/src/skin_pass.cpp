@@ -186,6 +186,47 @@ void dispatchK(const Slots& slots, std::size_t K, const Eigen::Vector3f* rest, c
   }
 }
 
+/// The spline's lattice pass (skin_lattice.hpp): vertex j's 27 nodes are base_j + a + b stride_y +
+/// c stride_z (a, b, c in 0..2) of weight wx[a] wy[b] wz[c], from 9 unorm16 axis weights. 22 bytes a vertex
+/// instead of 27 slots; each sum in one order: along x first, then y, then z.
+template <bool kVector>
+inline void deformSeparableVertex(const uint32_t base, const uint16_t* w, const uint32_t stride_y,
+                                  const uint32_t stride_z, const Eigen::Vector3f& rest, const float* d,
+                                  Eigen::Vector3f& out) {
+  constexpr float kInverse = 1.0f / 65535.0f;
+  const float wx[3] = {w[0] * kInverse, w[1] * kInverse, w[2] * kInverse};
+  const float wy[3] = {w[3] * kInverse, w[4] * kInverse, w[5] * kInverse};
+  const float wz[3] = {w[6] * kInverse, w[7] * kInverse, w[8] * kInverse};
+#if defined(__SSE2__)
+  if constexpr (kVector) {
+    __m128 sum = _mm_setzero_ps();
+    for (uint32_t c = 0; c < 3; ++c)
+      for (uint32_t b = 0; b < 3; ++b) {
+        const float* row = d + 4 * std::size_t{base + b * stride_y + c * stride_z};
+        __m128 t = _mm_mul_ps(_mm_set1_ps(wx[0]), _mm_load_ps(row));
+        t = _mm_add_ps(t, _mm_mul_ps(_mm_set1_ps(wx[1]), _mm_load_ps(row + 4)));
+        t = _mm_add_ps(t, _mm_mul_ps(_mm_set1_ps(wx[2]), _mm_load_ps(row + 8)));
+        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(wy[b] * wz[c]), t));
+      }
+    _mm_storeu_ps(out.data(), _mm_add_ps(_mm_loadu_ps(rest.data()), sum));
+    return;
+  }
+#endif
+  float sum[3] = {0, 0, 0};
+  for (uint32_t c = 0; c < 3; ++c)
+    for (uint32_t b = 0; b < 3; ++b) {
+      const float* row = d + 4 * std::size_t{base + b * stride_y + c * stride_z};
+      const float wyz = wy[b] * wz[c];
+      for (int a = 0; a < 3; ++a) {
+        float t = wx[0] * row[a];
+        t = t + wx[1] * row[4 + a];
+        t = t + wx[2] * row[8 + a];
+        sum[a] = sum[a] + wyz * t;
+      }
+    }
+  out = Eigen::Vector3f(rest.x() + sum[0], rest.y() + sum[1], rest.z() + sum[2]);
+}
+
 /// d_i / scale as x, y, z, 0 floats: one aligned 16-byte load per influence, and the fixed-point weight's
 /// scale folded in (rounded once, in double, to float).
 std::vector<float, Eigen::aligned_allocator<float>> scaledTable(const Eigen::Vector3d* displacement_m,
@@ -204,6 +245,18 @@ void Skin::deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, 
                        std::size_t begin, std::size_t end) const {
   const std::size_t K = influences_;
   switch (weight_format_) {
+    case WeightFormat::separable: {
+      // 16-byte stores of a 12-byte vertex touch the next vertex's x: the range's last vertex in scalar
+      // form, as the other passes do (the same arithmetic, so the same bits).
+      std::size_t j = begin;
+      for (; j + 1 < end; ++j)
+        deformSeparableVertex<true>(lattice_base_[j], &lattice_weights_[9 * j], lattice_stride_[1],
+                                    lattice_stride_[2], rest_m[j], scaled_xyz0, out_m[j]);
+      for (; j < end; ++j)
+        deformSeparableVertex<false>(lattice_base_[j], &lattice_weights_[9 * j], lattice_stride_[1],
+                                     lattice_stride_[2], rest_m[j], scaled_xyz0, out_m[j]);
+      return;
+    }
     case WeightFormat::packed24:
       return dispatchK(Packed24Slots{packed_.data()}, K, rest_m, scaled_xyz0, out_m, begin, end);
     case WeightFormat::unorm16:
@@ -230,8 +283,8 @@ std::vector<float, Eigen::aligned_allocator<float>> Skin::slotTable(const Eigen:
   // The spline at the lattice's nodes: point by point, each adding its weight on every node times its
   // displacement (a loop over nodes the compiler vectorises), so every node sums its points in index order
   // whatever the threads split: the same bits on any thread count.
+  // In metres: the separable pass turns its weights to fractions itself (deformSeparableVertex).
   std::vector<float, Eigen::aligned_allocator<float>> table(4 * node_count_, 0.0f);
-  const float inverse = static_cast<float>(1.0 / static_cast<double>(weight_scale_));
   parallelFor(node_count_, threads, [&](std::size_t begin, std::size_t end) {
     std::vector<float> x(end - begin, 0.0f), y(end - begin, 0.0f), z(end - begin, 0.0f);
     for (std::size_t i = 0; i < control_count_; ++i) {
@@ -245,9 +298,9 @@ std::vector<float, Eigen::aligned_allocator<float>> Skin::slotTable(const Eigen:
     }
     for (std::size_t n = 0; n < end - begin; ++n) {
       float* t = &table[4 * (begin + n)];
-      t[0] = x[n] * inverse;
-      t[1] = y[n] * inverse;
-      t[2] = z[n] * inverse;
+      t[0] = x[n];
+      t[1] = y[n];
+      t[2] = z[n];
     }
   });
   return table;

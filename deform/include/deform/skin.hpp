@@ -143,7 +143,7 @@ class Skin {
                           std::vector<uint8_t>* recomputed = nullptr) const;
 
  private:
-  enum class WeightFormat : uint8_t { float32, unorm16, packed24 };
+  enum class WeightFormat : uint8_t { float32, unorm16, packed24, separable };
   /// The pass over vertices [begin, end); `scaled_xyz0` holds d_i / weightScale() as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
                    std::size_t begin, std::size_t end) const;
@@ -151,6 +151,10 @@ class Skin {
   /// (the spline at the nodes) for a spline skin.
   std::vector<float, Eigen::aligned_allocator<float>> slotTable(const Eigen::Vector3d* displacement_m,
                                                                 unsigned threads) const;
+  /// The spline's lattice weights, kept separable (any layout): 9 unorm16 per vertex, each axis's three
+  /// summing exactly to 65,535, and the first node's index.
+  void storeSeparable(const std::vector<uint32_t>& base, const std::vector<float>& axis_weights,
+                      const uint32_t stride[3]);
   /// The float weights (as built) re-stored in the layout asked for.
   void storeCompact(const std::vector<float>& weights, const std::vector<uint32_t>& indices);
 
@@ -173,7 +177,12 @@ class Skin {
   /// Spline: node_count_ lattice nodes and the spline's weight of each control point on each (point-major:
   /// point i's weights on the nodes from i x node_count_); the slots then index nodes.
   std::size_t node_count_ = 0;
-  std::vector<float> node_from_control_;  ///< float: 6e-8 of a weight, summed in double
+  std::vector<float> node_from_control_;  ///< float: 6e-8 of a weight
+  /// separable: per vertex its first node and 9 axis weights (x's three, y's, z's) x 65,535; slot k is
+  /// node base + (k % 3) stride[0] + (k / 3 % 3) stride[1] + (k / 9) stride[2], of weight the product.
+  std::vector<uint32_t> lattice_base_;
+  std::vector<uint16_t> lattice_weights_;
+  uint32_t lattice_stride_[3] = {1, 1, 1};
   double displacement_gain_ = 1;
   bool nonnegative_weights_ = true;
   /// Reverse index for partial updates: the vertices control point i influences are
