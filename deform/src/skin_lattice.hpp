@@ -10,7 +10,7 @@
 namespace deform::detail {
 
 /// Cells on the longest side of the vertices' bounding box; the other sides get cells of the same size.
-/// On the built-in sedan (4.6 m) 32 cells of 0.14 m, 6,600 nodes. The lattice's own smoothing is then
+/// On the built-in sedan (4.6 m) 32 cells of 0.14 m, 5,775 nodes. The lattice's own smoothing is then
 /// under 0.5 mm RMS next to the spline's error on `sandbox tradeoff --skin-only`'s fields: the wall
 /// crash's dent at 60 points 16.3 / 15.0 / 14.6 / 14.3 mm RMS with 16 / 24 / 32 / 48 cells against the
 /// spline evaluated at every vertex, 14.1 mm; the crush field at 250 points 3.82 / 2.17 / 1.85 / 1.85

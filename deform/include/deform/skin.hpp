@@ -32,7 +32,7 @@ enum class SkinMethod : uint8_t {
 };
 
 /// The most control points a spline skin takes: each frame that moves a point evaluates the spline at
-/// every lattice node from every control point (2,250 nodes x N on the sedan), and its build solves a
+/// every lattice node from every control point (5,775 nodes x N on the sedan), and its build solves a
 /// dense (N + 4) system.
 inline constexpr std::size_t kSplineMostControlPoints = 256;
 
