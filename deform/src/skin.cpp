@@ -77,14 +77,21 @@ Skin Skin::build(const std::vector<Eigen::Vector3f>& vertices_m,
           skin.node_from_control_[i * skin.node_count_ + node] = static_cast<float>(row[i]);
       }
     });
+    skin.nonnegative_weights_ = false;  // the spline's weights change sign between the points
+    skin.storeSeparable(lattice.base, lattice.axis_weights, lattice.stride);
+    // Only the nodes some vertex follows bound its motion: the outer ring, outside the control points,
+    // extrapolates with larger sums and would loosen the bound the contact test culls with (the sedan at
+    // 60 points: 6.4 over the followed nodes, 12.9 over all).
+    std::vector<char> followed(skin.node_count_, 0);
+    for (std::size_t j = 0; j < skin.vertex_count_; ++j)
+      for (std::size_t k = 0; k < detail::kLatticeSlots; ++k) followed[skin.slotIndex(j, k)] = 1;
     for (std::size_t node = 0; node < skin.node_count_; ++node) {
+      if (!followed[node]) continue;
       double gain = 0;
       for (std::size_t i = 0; i < n; ++i)
         gain += std::abs(static_cast<double>(skin.node_from_control_[i * skin.node_count_ + node]));
       skin.displacement_gain_ = std::max(skin.displacement_gain_, gain);
     }
-    skin.nonnegative_weights_ = false;  // the spline's weights change sign between the points
-    skin.storeSeparable(lattice.base, lattice.axis_weights, lattice.stride);
     return skin;  // every vertex follows every point: no reverse index to keep
   }
   const std::size_t slots = skin.vertex_count_ * skin.influences_;

@@ -179,8 +179,6 @@ void dispatchK(const Slots& slots, std::size_t K, const Eigen::Vector3f* rest, c
       return deformRangeImpl<8>(slots, K, rest, d, out, begin, end);
     case 16:
       return deformRangeImpl<16>(slots, K, rest, d, out, begin, end);
-    case 27:  // the spline's lattice (skin_lattice.hpp)
-      return deformRangeImpl<27>(slots, K, rest, d, out, begin, end);
     default:
       return deformRangeImpl<0>(slots, K, rest, d, out, begin, end);
   }
@@ -321,11 +319,9 @@ std::size_t Skin::deformMoved(const Eigen::Vector3f* rest_m, const Eigen::Vector
   std::vector<uint8_t>& dirty = recomputed_flags ? *recomputed_flags : local;
   dirty.assign(vertex_count_, 0);
   if (node_count_ > 0) {  // the spline: a point that moves moves every node, so every vertex
-    if (std::find(moved.begin(),
-                  moved.begin() + static_cast<std::ptrdiff_t>(std::min(moved.size(), control_count_)),
-                  uint8_t{1}) ==
-        moved.begin() + static_cast<std::ptrdiff_t>(std::min(moved.size(), control_count_)))
-      return 0;
+    const auto flags_end =
+        moved.begin() + static_cast<std::ptrdiff_t>(std::min(moved.size(), control_count_));
+    if (std::none_of(moved.begin(), flags_end, [](uint8_t flag) { return flag != 0; })) return 0;
     deform(rest_m, displacement_m, out_m, threads);
     dirty.assign(vertex_count_, 1);
     return vertex_count_;

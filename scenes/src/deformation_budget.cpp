@@ -3,6 +3,7 @@
 
 #include "scene_world.hpp"
 
+#include <deform/skin.hpp>
 #include <deform/solver_params.hpp>
 
 #include <algorithm>
@@ -113,6 +114,13 @@ BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int
       return l.obstacle_ms * contactCostScale(l, scene.vehicles[car].deformation.settings, step_s) * steps;
     return (meets == Meets::Car ? l.car_ms : l.driving_ms) * steps;
   };
+  // A car whose scene names the spline skin stays at the levels that skin takes (its dense system and
+  // per-frame node stage grow with N: deform::kSplineMostControlPoints).
+  auto skinTakes = [&](std::size_t car, std::size_t level) {
+    const DeformationConfig& d = scene.vehicles[car].deformation;
+    return d.skin_method_auto || d.settings.skin_method != deform::SkinMethod::spline ||
+           levels[level].control_points <= deform::kSplineMostControlPoints;
+  };
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) total += cost(i, chosen[i]);
   plan.met = total <= budget_ms;
@@ -122,7 +130,9 @@ BudgetPlan planDeformationBudget(const SceneConfig& scene, double budget_ms, int
     raised = false;
     for (const std::size_t car : order) {
       const std::size_t next = chosen[car] + 1;
-      if (next >= levels.size() || total - cost(car, chosen[car]) + cost(car, next) > budget_ms) continue;
+      if (next >= levels.size() || !skinTakes(car, next) ||
+          total - cost(car, chosen[car]) + cost(car, next) > budget_ms)
+        continue;
       total += cost(car, next) - cost(car, chosen[car]);
       chosen[car] = next;
       raised = true;

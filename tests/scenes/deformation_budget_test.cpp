@@ -116,6 +116,22 @@ TEST_CASE("Budget: one that even the coarsest levels exceed says so and keeps th
   CHECK(plan.estimated_ms > 0.01);
 }
 
+TEST_CASE("Budget: a car that names the spline skin is never raised past the points that skin takes",
+          "[scenes][budget]") {
+  // The spline skin refuses more than 256 control points; an ample budget used to raise the car to
+  // `finest` (1000 points) and the run then stopped at the skin's build.
+  scenes::SceneConfig config = row(2, true);
+  config.vehicles[0].deformation.skin_method_auto = false;
+  config.vehicles[0].deformation.settings.skin_method = deform::SkinMethod::spline;
+  const scenes::BudgetPlan plan = scenes::planDeformationBudget(config, 1e3);
+  scenes::applyBudget(plan, config);
+  CHECK(config.vehicles[0].deformation.settings.control_points <= deform::kSplineMostControlPoints);
+  CHECK(config.vehicles[0].deformation.settings.skin_method == deform::SkinMethod::spline);
+  // The other car, skin `auto`, takes the finest level the budget allows.
+  CHECK(config.vehicles[1].deformation.settings.control_points ==
+        scenes::deformationLevels().back().control_points);
+}
+
 TEST_CASE("Budget: a car that will crash into another never gets the coarsest level", "[scenes][budget]") {
   // Two cars head-on and a third driving away: at 2 substeps x 1 iteration two bodies in contact do not
   // hold apart at 120 Hz (docs/CRASH_CALIBRATION.md), so however small the budget, the pair starts one

@@ -11,7 +11,7 @@
 //   spline: the cubic polyharmonic spline through every control point with a linear part (Duchon 1977),
 //        evaluated each frame at the nodes of a lattice around the mesh, each vertex following the 27
 //        nodes around it by quadratic B-spline weights: affine maps exact, continuously differentiable,
-//        27 non-negative slots per vertex.
+//        stored as 9 non-negative axis weights per vertex.
 #include <deform/parallel.hpp>
 
 #include <Eigen/Core>
@@ -116,7 +116,8 @@ class Skin {
   /// Lattice nodes a spline skin's slots refer to (0 for idw and mls).
   std::size_t latticeNodeCount() const { return node_count_; }
   /// A bound on sum_i |w_ij| over the vertices: |v_j - v_j0| <= displacementGain() x max_i |d_i|. 1 for idw;
-  /// mls's largest slot sum; the spline's largest node sum (its weights through the lattice, some < 0).
+  /// mls's largest slot sum; for the spline the largest sum over the nodes any vertex follows (its
+  /// B-spline weights are a convex combination of those nodes, whose own weights change sign).
   double displacementGain() const { return displacement_gain_; }
   /// Whether every control point's weight on every vertex is >= 0 (idw): a vertex moves within its
   /// points' hull.
@@ -147,8 +148,8 @@ class Skin {
   /// The pass over vertices [begin, end); `scaled_xyz0` holds d_i / weightScale() as x, y, z, 0 floats.
   void deformRange(const Eigen::Vector3f* rest_m, const float* scaled_xyz0, Eigen::Vector3f* out_m,
                    std::size_t begin, std::size_t end) const;
-  /// What the slots read: d_i / weightScale() as x, y, z, 0 floats per control point, or per lattice node
-  /// (the spline at the nodes) for a spline skin.
+  /// What the slots read: d_i / weightScale() as x, y, z, 0 floats per control point, or for a spline
+  /// skin the spline at each lattice node in metres (its pass scales its own weights).
   std::vector<float, Eigen::aligned_allocator<float>> slotTable(const Eigen::Vector3d* displacement_m,
                                                                 unsigned threads) const;
   /// The spline's lattice weights, kept separable (any layout): 9 unorm16 per vertex, each axis's three

@@ -144,81 +144,61 @@ std::vector<StressCase> skinAlpha(bool quick) {
   const auto displacements = run.simulation().controlDisplacements(run.carId(0));
   double largest_m = 0;
   for (const auto& d : displacements) largest_m = std::max(largest_m, d.norm());
+  // idw and mls at every alpha; the spline once (it reads no alpha).
+  std::vector<std::pair<deform::SkinMethod, double>> skins;
+  for (const deform::SkinMethod method : {deform::SkinMethod::idw, deform::SkinMethod::mls})
+    for (double alpha : alphas) skins.emplace_back(method, alpha);
+  skins.emplace_back(deform::SkinMethod::spline, deform::SkinOptions{}.alpha);
   std::vector<StressCase> cases;
-  for (const deform::SkinMethod method : {deform::SkinMethod::idw, deform::SkinMethod::mls}) {
-    for (double alpha : alphas) {
-      const auto start = Clock::now();
-      const bool idw = method == deform::SkinMethod::idw;
-      // idw's weights are a convex combination; mls's may be negative, and a vertex moves at most its
-      // weights' sum |w| times the farthest control point.
-      StressCase c{"skin_alpha", std::string(deform::skinMethodName(method)) + format(", alpha %g", alpha),
-                   idw ? "render mesh finite; every vertex moved no more than the farthest control point (a "
-                         "convex combination)"
-                       : "render mesh finite; every vertex moved no more than its weights' sum |w| times the "
-                         "farthest control point"};
-      vehicle::DeformationSettings settings = run.simulation().deformationSettings(run.carId(0));
-      settings.alpha = alpha;
-      settings.skin_method = method;
-      scenes::CarSkin skin(run.model(0).body, run.simulation().controlRestPoints(run.carId(0)), settings);
-      skin.update(displacements);
-      RunVerdict verdict;
-      double moved_max_m = 0, moved_sum_m = 0, beyond_m = 0, largest_abs_sum = 0;
-      for (std::size_t j = 0; j < skin.positions().size(); ++j) {
-        const Eigen::Vector3f v = skin.positions()[j];
-        if (!v.allFinite()) {
-          verdict.fail("vertex " + std::to_string(j) + " not finite");
-          break;
-        }
-        double abs_sum = 0;
+  for (const auto& [method, alpha] : skins) {
+    const auto start = Clock::now();
+    const bool idw = method == deform::SkinMethod::idw, spline = method == deform::SkinMethod::spline;
+    // idw's weights are a convex combination; mls's may be negative, and a vertex moves at most its
+    // weights' sum |w| times the farthest control point; the spline's slots are a convex combination of
+    // lattice nodes whose own weights change sign, bounded by the skin's displacementGain.
+    StressCase c{"skin_alpha",
+                 spline ? std::string("spline")
+                        : std::string(deform::skinMethodName(method)) + format(", alpha %g", alpha),
+                 idw ? "render mesh finite; every vertex moved no more than the farthest control point (a "
+                       "convex combination)"
+                 : spline ? "render mesh finite; every vertex moved no more than the skin's largest sum |w| "
+                            "times the farthest control point"
+                          : "render mesh finite; every vertex moved no more than its weights' sum |w| times "
+                            "the farthest control point"};
+    vehicle::DeformationSettings settings = run.simulation().deformationSettings(run.carId(0));
+    settings.alpha = alpha;
+    settings.skin_method = method;
+    scenes::CarSkin skin(run.model(0).body, run.simulation().controlRestPoints(run.carId(0)), settings);
+    skin.update(displacements);
+    RunVerdict verdict;
+    double moved_max_m = 0, moved_sum_m = 0, beyond_m = 0, largest_abs_sum = 0;
+    for (std::size_t j = 0; j < skin.positions().size(); ++j) {
+      const Eigen::Vector3f v = skin.positions()[j];
+      if (!v.allFinite()) {
+        verdict.fail("vertex " + std::to_string(j) + " not finite");
+        break;
+      }
+      double abs_sum = spline ? skin.skin().displacementGain() : 0.0;
+      if (!spline)
         for (std::size_t k = 0; k < skin.skin().influences(); ++k)
           abs_sum += std::abs(static_cast<double>(skin.skin().slotWeight(j, k)));
-        largest_abs_sum = std::max(largest_abs_sum, abs_sum);
-        const double moved_m = (v - skin.restPositions()[j]).cast<double>().norm();
-        const double bound_m = (idw ? 1.0 : abs_sum) * largest_m * (1 + 1e-5) + 1e-6;
-        beyond_m = std::max(beyond_m, moved_m - bound_m);
-        moved_max_m = std::max(moved_max_m, moved_m);
-        moved_sum_m += moved_m;
-      }
-      if (beyond_m > 0)
-        verdict.fail(idw ? "a vertex moved beyond every control point" : "a vertex moved beyond its bound");
-      c.passed = verdict.ok;
-      c.detail = verdict.text() +
-                 format("largest vertex move %.3f m (control %.3f m), mean %.1f mm, largest sum |w| %.2f",
-                        moved_max_m, largest_m,
-                        1e3 * moved_sum_m / static_cast<double>(skin.positions().size()), largest_abs_sum);
-      c.seconds = secondsSince(start);
-      cases.push_back(c);
+      largest_abs_sum = std::max(largest_abs_sum, abs_sum);
+      const double moved_m = (v - skin.restPositions()[j]).cast<double>().norm();
+      const double bound_m = (idw ? 1.0 : abs_sum) * largest_m * (1 + 1e-5) + 1e-6;
+      beyond_m = std::max(beyond_m, moved_m - bound_m);
+      moved_max_m = std::max(moved_max_m, moved_m);
+      moved_sum_m += moved_m;
     }
+    if (beyond_m > 0)
+      verdict.fail(idw ? "a vertex moved beyond every control point" : "a vertex moved beyond its bound");
+    c.passed = verdict.ok;
+    c.detail =
+        verdict.text() +
+        format("largest vertex move %.3f m (control %.3f m), mean %.1f mm, largest sum |w| %.2f", moved_max_m,
+               largest_m, 1e3 * moved_sum_m / static_cast<double>(skin.positions().size()), largest_abs_sum);
+    c.seconds = secondsSince(start);
+    cases.push_back(c);
   }
-  // The spline (no alpha): its weights through the lattice change sign, so a vertex moves at most their
-  // largest sum |w| (deform::Skin::displacementGain) times the farthest control point.
-  const auto start = Clock::now();
-  StressCase c{"skin_alpha", "spline",
-               "render mesh finite; every vertex moved no more than the skin's largest sum |w| times the "
-               "farthest control point"};
-  vehicle::DeformationSettings settings = run.simulation().deformationSettings(run.carId(0));
-  settings.skin_method = deform::SkinMethod::spline;
-  scenes::CarSkin skin(run.model(0).body, run.simulation().controlRestPoints(run.carId(0)), settings);
-  skin.update(displacements);
-  RunVerdict verdict;
-  const double gain = skin.skin().displacementGain();
-  double moved_max_m = 0, beyond_m = 0;
-  for (std::size_t j = 0; j < skin.positions().size(); ++j) {
-    const Eigen::Vector3f v = skin.positions()[j];
-    if (!v.allFinite()) {
-      verdict.fail("vertex " + std::to_string(j) + " not finite");
-      break;
-    }
-    const double moved_m = (v - skin.restPositions()[j]).cast<double>().norm();
-    beyond_m = std::max(beyond_m, moved_m - (gain * largest_m * (1 + 1e-5) + 1e-6));
-    moved_max_m = std::max(moved_max_m, moved_m);
-  }
-  if (beyond_m > 0) verdict.fail("a vertex moved beyond its bound");
-  c.passed = verdict.ok;
-  c.detail = verdict.text() + format("largest vertex move %.3f m (control %.3f m), largest sum |w| %.2f",
-                                     moved_max_m, largest_m, gain);
-  c.seconds = secondsSince(start);
-  cases.push_back(c);
   return cases;
 }
 

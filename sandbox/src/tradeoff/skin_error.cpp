@@ -12,13 +12,6 @@
 #include <cstdio>
 
 namespace sandbox {
-namespace {
-
-/// The spline is built with the default alpha (SkinOptions::alpha must lie in (0, 64]), which it does not
-/// read; its rows carry k 0 (every point) and alpha 0.
-constexpr double kSplineAlpha = 3.5;
-
-}  // namespace
 
 SkinErrorOptions SkinErrorOptions::quick() {
   SkinErrorOptions o;
@@ -72,8 +65,9 @@ std::vector<SkinErrorRow> runSkinError(const SkinErrorOptions& options) {
       for (const auto& c : control.points_m) moved[f].push_back(fields[f].displacement_m(c));
     // The spline uses every point whatever K and alpha: one row per field, k 0 (dense) and alpha 0.
     if (control.points_m.size() <= deform::kSplineMostControlPoints) {
-      const deform::Skin skin =
-          deform::Skin::build(rest, control.points_m, {kSplineAlpha, 0, 0, deform::SkinMethod::spline});
+      deform::SkinOptions spline;  // K and alpha are not read
+      spline.method = deform::SkinMethod::spline;
+      const deform::Skin skin = deform::Skin::build(rest, control.points_m, spline);
       for (std::size_t f = 0; f < fields.size(); ++f) {
         skin.deform(rest.data(), moved[f].data(), skinned.data());
         rows.push_back(measured(f, "spline", 0, 0.0));

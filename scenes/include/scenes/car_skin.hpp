@@ -1,5 +1,5 @@
 #pragma once
-// A car's render mesh following its control points through the skin (deform/skin.hpp, idw or mls):
+// A car's render mesh following its control points through the skin (deform/skin.hpp, idw, mls or spline):
 // weights built once from the rest control points, then per frame only the vertices that a moved
 // control point influences are recomputed (deform::Skin::deformMoved, DESIGN.md section 8), and only
 // the normals of the vertices next to them (deform::VertexNormals). Then the vertices inside what the car
