@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "body_halves.hpp"
+#include "sweep_wide.hpp"
 
 namespace deform {
 
@@ -81,9 +82,7 @@ void DeformableBody::sweepConstraints() {
   const double h = h_s_;
   const double h2 = h * h;
   const std::size_t spoke_count = settings.spokes.size();
-  const EdgeConstraint* edges = settings.edges.data();
   const SpokeConstraint* spokes = settings.spokes.data();
-  const BendConstraint* bends = settings.bends.data();
   const double* edge_rest = state_.edge_rest_m.data();
   const double* spoke_rest = state_.spoke_rest_m.data();
   const double* bend_rest = state_.bend_rest_m.data();
@@ -98,21 +97,17 @@ void DeformableBody::sweepConstraints() {
   const Eigen::Vector3d* normals = settings.spoke_normal.data();
   const YieldLimits* spoke_limits = settings.spoke_yield.data();
   const Eigen::Vector3d core = sub_.core;
+  // The edges and bends four at a time where four neighbours share no point (sweep_wide.hpp).
+  const bool wide = params_.wide_sweep && wideSweepAvailable();
+  const DistanceSweep edge_sweep{
+      x, w, edge_pairs_.data(), edge_disjoint_.data(), edge_rest, edge_factors, edge_lambda, edge_yield, h2};
+  const DistanceSweep bend_sweep{
+      x, w, bend_pairs_.data(), bend_disjoint_.data(), bend_rest, bend_factors, bend_lambda, bend_yield, h2};
   auto sweepEdges = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const EdgeConstraint& c = edges[k];
-      projectDistance(x[c.a], x[c.b], w[c.a], w[c.b], edge_rest[k], edge_factors[k], edge_lambda[k],
-                      kLimited ? -h2 * edge_yield[k].stretch_N : -HUGE_VAL,
-                      kLimited ? h2 * edge_yield[k].shorten_N : HUGE_VAL);
-    }
+    sweepDistances<kLimited>(edge_sweep, begin, end, wide);
   };
   auto sweepBends = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const BendConstraint& c = bends[k];
-      projectDistance(x[c.left], x[c.right], w[c.left], w[c.right], bend_rest[k], bend_factors[k],
-                      bend_lambda[k], kLimited ? -h2 * bend_yield[k].stretch_N : -HUGE_VAL,
-                      kLimited ? h2 * bend_yield[k].shorten_N : HUGE_VAL);
-    }
+    sweepDistances<kLimited>(bend_sweep, begin, end, wide);
   };
   // The core moves after the sweep by the columns' summed pull (refreshDistanceFactors says why). Each
   // half of the columns sums its own pull and twist, and the halves are added in order: the same

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "body_halves.hpp"
+#include "prediction.hpp"
+#include "sweep_wide.hpp"
 
 namespace deform {
 namespace {
@@ -35,6 +37,14 @@ DeformableBody::DeformableBody(std::shared_ptr<const BodySettings> settings, con
   column_lambda_.resize(settings_->spokes.size());
   bend_lambda_.resize(settings_->bends.size());
   for (double r : settings_->spoke_rest_m) radius_m_ = std::max(radius_m_, r);
+  edge_pairs_ = interleavedPairs(
+      settings_->edges, [](const EdgeConstraint& c) { return c.a; },
+      [](const EdgeConstraint& c) { return c.b; });
+  bend_pairs_ = interleavedPairs(
+      settings_->bends, [](const BendConstraint& c) { return c.left; },
+      [](const BendConstraint& c) { return c.right; });
+  edge_disjoint_ = disjointFours(edge_pairs_);
+  bend_disjoint_ = disjointFours(bend_pairs_);
   refreshYieldForces();
 }
 
@@ -323,41 +333,26 @@ void DeformableBody::beginSubstep(uint32_t k) {
   const bool inertial = scale > 0 && (load_mps2_.squaredNorm() > 0 || omega_radps_.squaredNorm() > 0 ||
                                       alpha_radps2_.squaredNorm() > 0);
   // The two halves of the points side by side (SolverParams::threads), each with its own sums.
-  struct PredictionSums {
-    double damping_loss_J = 0, inertial_work_J = 0;
-    Eigen::Vector3d to_core_Ns{0, 0, 0};
-  };
+  Prediction prediction;
+  prediction.x = x.data();
+  prediction.previous = previous_m_.data();
+  prediction.v = v.data();
+  prediction.mass_kg = m.data();
+  prediction.max_deviation_m = settings.max_deviation_m.data();
+  prediction.core_m = core;
+  prediction.core_velocity_mps = core_velocity_mps_;
+  prediction.load_mps2 = load_mps2_;
+  prediction.omega_radps = omega_radps_;
+  prediction.alpha_radps2 = alpha_radps2_;
+  prediction.h_s = h;
+  prediction.decay = decay;
+  prediction.inertial_scale = scale;
+  prediction.inertial = inertial;
   PredictionSums sums[2];
-  const Eigen::Vector3d core_velocity_mps = core_velocity_mps_, load_mps2 = load_mps2_,
-                        omega_radps = omega_radps_, alpha_radps2 = alpha_radps2_;
-  Eigen::Vector3d* previous = previous_m_.data();
   forEachHalf(params_.threads, [&](int half) {
     PredictionSums sum;  // a local, stored once: the two halves' sums share a cache line
     const auto [begin, end] = halfOf(n, half);
-    for (std::size_t i = begin; i < end; ++i) {
-      previous[i] = x[i];
-      // Drag first, then the load: at rest (v = 0) the full load acts, so damping leaves the static
-      // equilibrium where the compliance alone puts it.
-      const Eigen::Vector3d relative = v[i] - core_velocity_mps;
-      Eigen::Vector3d vi = core_velocity_mps + relative * decay;
-      sum.damping_loss_J += 0.5 * m[i] * relative.squaredNorm() * (1.0 - decay * decay);
-      sum.to_core_Ns += m[i] * (v[i] - vi);
-      Eigen::Vector3d inertial_mps2{0, 0, 0};
-      if (inertial) {
-        const Eigen::Vector3d r = x[i] - core;
-        inertial_mps2 = scale * (load_mps2 - alpha_radps2.cross(r) - omega_radps.cross(omega_radps.cross(r)) -
-                                 2.0 * omega_radps.cross(vi));
-        vi += h * inertial_mps2;
-      }
-      Eigen::Vector3d travel = h * vi;
-      // Numeric guard: a point can end a substep at most 2 d_max from where it began (visual constraint),
-      // so a larger predicted travel (an enormous impulse) is shortened to that before the solve.
-      const double cap = 2.0 * settings.max_deviation_m[i];
-      const double travel2 = travel.squaredNorm();
-      if (travel2 > cap * cap) travel *= cap / std::sqrt(travel2);
-      if (inertial) sum.inertial_work_J += m[i] * inertial_mps2.dot(travel - h * core_velocity_mps);
-      x[i] += travel;
-    }
+    predictPoints(prediction, begin, end, params_.wide_sweep, sum);
     sums[half] = sum;
   });
   for (const PredictionSums& sum : sums) {

@@ -37,6 +37,7 @@ struct BenchStepFlags {
   bool anchored_columns = false;  ///< deform::BodyDescription::anchored_columns
   bool yield_limited = false;     ///< deform::SolverParams::yield_limited
   uint32_t threads = 1;           ///< deform::SolverParams::threads
+  bool narrow = false;            ///< deform::SolverParams::wide_sweep off
   std::string peer;  ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
   bool json = false;
 };
@@ -76,6 +77,7 @@ void runBenchStep(const BenchStepFlags& f) {
   options.dt_s = f.dt_s;
   options.yield_limited = f.yield_limited;
   options.threads = f.threads;
+  options.wide_sweep = !f.narrow;
   const StepCost cost = measureStepCost(settings, options);
   const std::size_t constraints = settings->constraintCount();
   const uint32_t contact_points = cost.contact_points;
@@ -95,6 +97,7 @@ void runBenchStep(const BenchStepFlags& f) {
   r["anchored_columns"] = f.anchored_columns;
   r["yield_limited"] = f.yield_limited;
   r["threads"] = f.threads;
+  r["wide_sweep"] = !f.narrow;
   r["dt_s"] = f.dt_s;
   r["steps"] = f.steps;
   r["contact_points"] = contact_points;
@@ -166,6 +169,8 @@ void registerBenchStepCommand(CLI::App& bench) {
                    "Threads sweeping the body (deform SolverParams::threads: 1, or 2 for its halves)")
       ->capture_default_str();
   step->add_option("--peer", flags->peer, "Also run the same body in a peer engine: bullet (btSoftBody)");
+  step->add_flag("--narrow", flags->narrow,
+                 "One constraint and point at a time (deform SolverParams::wide_sweep off; the same bits)");
   step->add_flag("--json", flags->json, "Print one JSON object");
   step->callback([flags] { runBenchStep(*flags); });
 }

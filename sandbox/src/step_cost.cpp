@@ -31,6 +31,7 @@ StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& sett
   params.iterations = options.iterations;
   params.yield_limited = options.yield_limited;
   params.threads = options.threads;
+  params.wide_sweep = options.wide_sweep;
   params.sleep_delay_s = -1;  // measure work, not sleep
   deform::DeformableBody body(settings, params);
 

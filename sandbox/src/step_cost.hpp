@@ -25,6 +25,7 @@ struct StepCostOptions {
   double dt_s = 1.0 / 60;
   bool yield_limited = false;  ///< deform::SolverParams::yield_limited
   uint32_t threads = 1;        ///< deform::SolverParams::threads
+  bool wide_sweep = true;      ///< deform::SolverParams::wide_sweep
 };
 
 /// Steps a body of `settings` (sleep off) under the wall and times it. ns_per_constraint_iteration is of

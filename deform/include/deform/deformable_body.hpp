@@ -239,6 +239,10 @@ class DeformableBody {
   /// factors_h_s_ [s] and a core of inverse mass factors_core_per_kg_ (the columns').
   std::vector<DistanceFactors> edge_factors_, bend_factors_, column_factors_;
   double factors_h_s_ = 0, factors_core_per_kg_ = 0;
+  /// The edges' and bends' two points interleaved, and where four neighbours in the sweep share no point
+  /// (deform/src/sweep_wide.hpp: they are swept side by side).
+  std::vector<uint32_t> edge_pairs_, bend_pairs_;
+  std::vector<uint8_t> edge_disjoint_, bend_disjoint_;
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ElasticBand> edge_band_, spoke_band_, bend_band_;          ///< where each stays elastic (cache)
   /// Per crush column, from its rest place (cache): the yield hardening has added [m], and whether it has

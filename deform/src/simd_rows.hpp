@@ -1,0 +1,73 @@
+#pragma once
+// Four points of an array of Eigen::Vector3d as three AVX2 columns (x, y, z of each in its lane) and back,
+// for the four-wide passes (sweep_wide.cpp, prediction.cpp). Each point is read as it is written, (x, y)
+// then z: a load spanning two earlier stores would wait for them to retire instead of taking their data.
+#include <Eigen/Core>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define DEFORM_SIMD_AVX2 1
+
+namespace deform {
+
+/// Four points' coordinates, one point per lane.
+struct Points4 {
+  __m256d x, y, z;
+};
+
+/// A point as a row (x, y, z, 0).
+__attribute__((target("avx2"))) inline __m256d pointRow(const Eigen::Vector3d& p) {
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p.data())), _mm_load_sd(p.data() + 2), 1);
+}
+
+/// The points p0 .. p3 in lanes 0 .. 3.
+__attribute__((target("avx2"))) inline Points4 loadPoints4(const Eigen::Vector3d& p0,
+                                                           const Eigen::Vector3d& p1,
+                                                           const Eigen::Vector3d& p2,
+                                                           const Eigen::Vector3d& p3) {
+  const __m256d r0 = pointRow(p0), r1 = pointRow(p1), r2 = pointRow(p2), r3 = pointRow(p3);
+  const __m256d t0 = _mm256_unpacklo_pd(r0, r1);  // x0 x1 z0 z1
+  const __m256d t1 = _mm256_unpackhi_pd(r0, r1);  // y0 y1 .. ..
+  const __m256d t2 = _mm256_unpacklo_pd(r2, r3);  // x2 x3 z2 z3
+  const __m256d t3 = _mm256_unpackhi_pd(r2, r3);  // y2 y3 .. ..
+  return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+          _mm256_permute2f128_pd(t0, t2, 0x31)};
+}
+
+/// Lanes 0 .. 3 of `p` into q0 .. q3.
+__attribute__((target("avx2"))) inline void storePoints4(const Points4& p, Eigen::Vector3d& q0,
+                                                         Eigen::Vector3d& q1, Eigen::Vector3d& q2,
+                                                         Eigen::Vector3d& q3) {
+  const __m256d xy02 = _mm256_unpacklo_pd(p.x, p.y);  // x0 y0 x2 y2
+  const __m256d xy13 = _mm256_unpackhi_pd(p.x, p.y);  // x1 y1 x3 y3
+  const __m128d z01 = _mm256_castpd256_pd128(p.z), z23 = _mm256_extractf128_pd(p.z, 1);
+  _mm_storeu_pd(q0.data(), _mm256_castpd256_pd128(xy02));
+  _mm_storeu_pd(q1.data(), _mm256_castpd256_pd128(xy13));
+  _mm_storeu_pd(q2.data(), _mm256_extractf128_pd(xy02, 1));
+  _mm_storeu_pd(q3.data(), _mm256_extractf128_pd(xy13, 1));
+  _mm_store_sd(q0.data() + 2, z01);
+  _mm_storeh_pd(q1.data() + 2, z01);
+  _mm_store_sd(q2.data() + 2, z23);
+  _mm_storeh_pd(q3.data() + 2, z23);
+}
+
+/// (a x b) lane by lane, as Eigen's cross: (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
+__attribute__((target("avx2"))) inline Points4 cross4(const Points4& a, const Points4& b) {
+  return {_mm256_sub_pd(_mm256_mul_pd(a.y, b.z), _mm256_mul_pd(a.z, b.y)),
+          _mm256_sub_pd(_mm256_mul_pd(a.z, b.x), _mm256_mul_pd(a.x, b.z)),
+          _mm256_sub_pd(_mm256_mul_pd(a.x, b.y), _mm256_mul_pd(a.y, b.x))};
+}
+
+/// (a . b) lane by lane, as Eigen's: (a0 b0 + a1 b1) + a2 b2.
+__attribute__((target("avx2"))) inline __m256d dot4(const Points4& a, const Points4& b) {
+  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a.x, b.x), _mm256_mul_pd(a.y, b.y)),
+                       _mm256_mul_pd(a.z, b.z));
+}
+
+/// A vector in every lane.
+__attribute__((target("avx2"))) inline Points4 broadcast4(const Eigen::Vector3d& v) {
+  return {_mm256_set1_pd(v.x()), _mm256_set1_pd(v.y()), _mm256_set1_pd(v.z())};
+}
+
+}  // namespace deform
+#endif

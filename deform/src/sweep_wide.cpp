@@ -1,0 +1,153 @@
+// The four-wide sweep of distance constraints (sweep_wide.hpp).
+#include "sweep_wide.hpp"
+
+#include <cmath>
+
+#include "simd_rows.hpp"
+#if defined(DEFORM_SIMD_AVX2)
+#define DEFORM_SWEEP_AVX2 1
+#endif
+
+namespace deform {
+
+std::vector<uint8_t> disjointFours(const std::vector<uint32_t>& pairs) {
+  const std::size_t n = pairs.size() / 2;
+  std::vector<uint8_t> disjoint(n, 0);
+  for (std::size_t k = 0; k + 4 <= n; ++k) {
+    const uint32_t* p = pairs.data() + 2 * k;
+    bool apart = true;
+    for (int i = 0; i < 8 && apart; ++i)
+      for (int j = i + 1; j < 8 && apart; ++j) apart = p[i] != p[j];
+    disjoint[k] = apart ? 1 : 0;
+  }
+  return disjoint;
+}
+
+namespace {
+
+template <bool kLimited>
+[[gnu::always_inline]] inline void projectOne(const DistanceSweep& s, std::size_t k) {
+  const uint32_t a = s.pairs[2 * k], b = s.pairs[2 * k + 1];
+  projectDistance(s.x[a], s.x[b], s.w[a], s.w[b], s.rest_m[k], s.factors[k], s.lambda[k],
+                  kLimited ? -s.h2 * s.yield[k].stretch_N : -HUGE_VAL,
+                  kLimited ? s.h2 * s.yield[k].shorten_N : HUGE_VAL);
+}
+
+#if defined(DEFORM_SWEEP_AVX2)
+__attribute__((target("avx2"))) inline Points4 loadPoints(const Eigen::Vector3d* x, const uint32_t* pairs,
+                                                          int side) {
+  return loadPoints4(x[pairs[side]], x[pairs[2 + side]], x[pairs[4 + side]], x[pairs[6 + side]]);
+}
+
+__attribute__((target("avx2"))) inline void storePoints(Eigen::Vector3d* x, const uint32_t* pairs, int side,
+                                                        const Points4& p) {
+  storePoints4(p, x[pairs[side]], x[pairs[2 + side]], x[pairs[4 + side]], x[pairs[6 + side]]);
+}
+
+/// `moved` in the live lanes, `p` in the others.
+__attribute__((target("avx2"))) inline Points4 blendLive(const Points4& p, const Points4& moved,
+                                                         __m256d live) {
+  return {_mm256_blendv_pd(p.x, moved.x, live), _mm256_blendv_pd(p.y, moved.y, live),
+          _mm256_blendv_pd(p.z, moved.z, live)};
+}
+
+/// Constraints k .. k + 3 (disjoint), each lane projectDistance's operations in its order.
+template <bool kLimited>
+__attribute__((target("avx2"))) inline void projectFour(const DistanceSweep& s, std::size_t k) {
+  const uint32_t* pairs = s.pairs + 2 * k;
+  const __m256i pair_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pairs));  // a0 b0 .. a3 b3
+  const __m256i split = _mm256_permutevar8x32_epi32(pair_lo, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+  // The masked gather, with every lane on and a defined source (the plain one trips GCC 12's
+  // maybe-uninitialized).
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d wa =
+      _mm256_mask_i32gather_pd(_mm256_setzero_pd(), s.w, _mm256_castsi256_si128(split), all, 8);
+  const __m256d wb =
+      _mm256_mask_i32gather_pd(_mm256_setzero_pd(), s.w, _mm256_extracti128_si256(split, 1), all, 8);
+  Points4 pa = loadPoints(s.x, pairs, 0), pb = loadPoints(s.x, pairs, 1);
+
+  const __m256d dx = _mm256_sub_pd(pa.x, pb.x), dy = _mm256_sub_pd(pa.y, pb.y),
+                dz = _mm256_sub_pd(pa.z, pb.z);
+  const __m256d length = _mm256_sqrt_pd(
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz)));
+  // projectDistance returns untouched where length < kMinConstraintLength_m.
+  const __m256d live = _mm256_cmp_pd(length, _mm256_set1_pd(kMinConstraintLength_m), _CMP_NLT_UQ);
+  const __m256d c = _mm256_sub_pd(length, _mm256_loadu_pd(s.rest_m + k));
+  // The factors (alpha~, 1 / denominator) of four constraints, de-interleaved.
+  const __m256d f01 = _mm256_loadu_pd(&s.factors[k].alpha_tilde);
+  const __m256d f23 = _mm256_loadu_pd(&s.factors[k + 2].alpha_tilde);
+  const __m256d alpha = _mm256_permute4x64_pd(_mm256_unpacklo_pd(f01, f23), 0xD8);
+  const __m256d inverse = _mm256_permute4x64_pd(_mm256_unpackhi_pd(f01, f23), 0xD8);
+  const __m256d lambda = _mm256_loadu_pd(s.lambda + k);
+  const __m256d negative_c = _mm256_xor_pd(c, _mm256_set1_pd(-0.0));
+  __m256d next =
+      _mm256_add_pd(lambda, _mm256_mul_pd(_mm256_sub_pd(negative_c, _mm256_mul_pd(alpha, lambda)), inverse));
+  if constexpr (kLimited) {
+    // The yield forces (float stretch, shorten) of four constraints; std::clamp(next, lo, hi).
+    const __m256 yield = _mm256_loadu_ps(&s.yield[k].stretch_N);
+    const __m256 split_yield = _mm256_permutevar8x32_ps(yield, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+    const __m256d lo =
+        _mm256_mul_pd(_mm256_set1_pd(-s.h2), _mm256_cvtps_pd(_mm256_castps256_ps128(split_yield)));
+    const __m256d hi =
+        _mm256_mul_pd(_mm256_set1_pd(s.h2), _mm256_cvtps_pd(_mm256_extractf128_ps(split_yield, 1)));
+    next = _mm256_blendv_pd(next, hi, _mm256_cmp_pd(hi, next, _CMP_LT_OQ));
+    next = _mm256_blendv_pd(next, lo, _mm256_cmp_pd(next, lo, _CMP_LT_OQ));
+  }
+  const __m256d scale = _mm256_div_pd(_mm256_sub_pd(next, lambda), length);
+  const __m256d nx = _mm256_mul_pd(dx, scale), ny = _mm256_mul_pd(dy, scale), nz = _mm256_mul_pd(dz, scale);
+  pa = blendLive(pa,
+                 {_mm256_add_pd(pa.x, _mm256_mul_pd(wa, nx)), _mm256_add_pd(pa.y, _mm256_mul_pd(wa, ny)),
+                  _mm256_add_pd(pa.z, _mm256_mul_pd(wa, nz))},
+                 live);
+  pb = blendLive(pb,
+                 {_mm256_sub_pd(pb.x, _mm256_mul_pd(wb, nx)), _mm256_sub_pd(pb.y, _mm256_mul_pd(wb, ny)),
+                  _mm256_sub_pd(pb.z, _mm256_mul_pd(wb, nz))},
+                 live);
+  _mm256_storeu_pd(s.lambda + k, _mm256_blendv_pd(lambda, next, live));
+  storePoints(s.x, pairs, 0, pa);
+  storePoints(s.x, pairs, 1, pb);
+}
+
+template <bool kLimited>
+__attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size_t begin, std::size_t end) {
+  std::size_t k = begin;
+  while (k < end) {
+    if (k + 4 <= end && s.disjoint[k]) {
+      projectFour<kLimited>(s, k);
+      k += 4;
+    } else {
+      projectOne<kLimited>(s, k);
+      ++k;
+    }
+  }
+}
+#endif
+
+}  // namespace
+
+bool wideSweepAvailable() {
+#if defined(DEFORM_SWEEP_AVX2)
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+#else
+  return false;
+#endif
+}
+
+template <bool kLimited>
+void sweepDistances(const DistanceSweep& sweep, std::size_t begin, std::size_t end, bool wide) {
+#if defined(DEFORM_SWEEP_AVX2)
+  if (wide) {
+    sweepAvx2<kLimited>(sweep, begin, end);
+    return;
+  }
+#else
+  (void)wide;
+#endif
+  for (std::size_t k = begin; k < end; ++k) projectOne<kLimited>(sweep, k);
+}
+
+template void sweepDistances<true>(const DistanceSweep&, std::size_t, std::size_t, bool);
+template void sweepDistances<false>(const DistanceSweep&, std::size_t, std::size_t, bool);
+
+}  // namespace deform

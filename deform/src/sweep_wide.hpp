@@ -1,0 +1,51 @@
+#pragma once
+// Distance constraints (edges, bends) swept four at a time where four neighbours in the sweep share no
+// point. Such projections commute, so projecting them side by side, each in its own SIMD lane with the
+// operations of projectDistance in the same order (no fused multiply-add), gives the one-by-one
+// Gauss-Seidel sweep's result to the bit (the test `the wide sweep...`). AVX2, chosen at run time; the
+// scalar sweep elsewhere.
+#include <deform/constraints.hpp>
+#include <deform/solver_params.hpp>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace deform {
+
+/// One kind of pair constraint in sweep order, as the sweep reads it.
+struct DistanceSweep {
+  Eigen::Vector3d* x = nullptr;       ///< positions [m]
+  const double* w = nullptr;          ///< inverse masses [1/kg]
+  const uint32_t* pairs = nullptr;    ///< the two points of constraint k at 2 k, 2 k + 1
+  const uint8_t* disjoint = nullptr;  ///< disjointFours: constraints k .. k + 3 share no point
+  const double* rest_m = nullptr;     ///< rest lengths [m]
+  const DistanceFactors* factors = nullptr;
+  double* lambda = nullptr;           ///< multipliers [N s^2]
+  const YieldForce* yield = nullptr;  ///< yield forces (the force-limited sweep)
+  double h2 = 0;                      ///< substep length squared [s^2]
+};
+
+/// The two points of each pair, interleaved (DistanceSweep::pairs).
+template <class Constraint, class First, class Second>
+std::vector<uint32_t> interleavedPairs(const std::vector<Constraint>& constraints, First first,
+                                       Second second) {
+  std::vector<uint32_t> pairs;
+  pairs.reserve(2 * constraints.size());
+  for (const Constraint& c : constraints) {
+    pairs.push_back(first(c));
+    pairs.push_back(second(c));
+  }
+  return pairs;
+}
+
+/// For each constraint k, 1 where constraints k .. k + 3 exist and no two of them share a point.
+std::vector<uint8_t> disjointFours(const std::vector<uint32_t>& pairs);
+
+/// Projects constraints [begin, end) in order (projectDistance, force-limited by `yield` when
+/// kLimited): four side by side wherever disjoint, one at a time elsewhere; `wide` false: one at a time.
+template <bool kLimited>
+void sweepDistances(const DistanceSweep& sweep, std::size_t begin, std::size_t end, bool wide);
+
+}  // namespace deform
