@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "body_halves.hpp"
+#include "sweep_wide.hpp"
 
 namespace deform {
 
@@ -141,9 +142,17 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
   forEachHalf(params_.threads, [&](int half) {
     double work_J = 0;  // a local, stored once: the two halves' sums share a cache line
     const auto [edges_begin, edges_end] = halfOf(settings.edges.size(), half);
-    for (std::size_t k = edges_begin; k < edges_end; ++k) {
+    // Those outside their band, found four at a time where the machine can (outsideBands), flow in order.
+    std::vector<uint32_t>& outside = outside_[half];
+    std::vector<double>& outside_m2 = outside_m2_[half];
+    outside.clear();
+    outside_m2.clear();
+    outsideBands(x.data(), edge_pairs_.data(), edge_band_.data(), edges_begin, edges_end, params_.wide_sweep,
+                 outside, outside_m2);
+    for (std::size_t j = 0; j < outside.size(); ++j) {
+      const std::size_t k = outside[j];
       const EdgeConstraint& c = settings.edges[k];
-      flow((x[c.a] - x[c.b]).squaredNorm(), edge_band_[k], state_.edge_rest_m[k], settings.edge_rest_m[k],
+      flow(outside_m2[j], edge_band_[k], state_.edge_rest_m[k], settings.edge_rest_m[k],
            settings.edge_yield[k], c.material, c.compliance_m_per_N, edge_lambda_[k], edge_yield_N_[k],
            work_J);
     }
@@ -182,11 +191,16 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
       }
     }
     const auto [bends_begin, bends_end] = halfOf(settings.bends.size(), half);
-    for (std::size_t k = bends_begin; k < bends_end; ++k) {
+    outside.clear();
+    outside_m2.clear();
+    outsideBands(x.data(), bend_pairs_.data(), bend_band_.data(), bends_begin, bends_end, params_.wide_sweep,
+                 outside, outside_m2);
+    for (std::size_t j = 0; j < outside.size(); ++j) {
+      const std::size_t k = outside[j];
       const BendConstraint& c = settings.bends[k];
-      flow((x[c.left] - x[c.right]).squaredNorm(), bend_band_[k], state_.bend_rest_m[k],
-           settings.bend_rest_m[k], settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k],
-           bend_yield_N_[k], work_J);
+      flow(outside_m2[j], bend_band_[k], state_.bend_rest_m[k], settings.bend_rest_m[k],
+           settings.bend_yield[k], c.material, c.compliance_m_per_N, bend_lambda_[k], bend_yield_N_[k],
+           work_J);
     }
     work_of_half[half] = work_J;
   });

@@ -9,6 +9,7 @@
 
 #include "body_halves.hpp"
 #include "prediction.hpp"
+#include "shell_wide.hpp"
 #include "sweep_wide.hpp"
 
 namespace deform {
@@ -393,13 +394,15 @@ void DeformableBody::settleSubstep() {
   Eigen::Vector3d moment[2], given[2], pushed[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   forEachHalf(params_.threads, [&](int half) {
     const auto [begin, end] = halfOf(n, half);
-    moment[half] = shellRotation(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift);
+    moment[half] = shellRotationWide(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift,
+                                     params_.wide_sweep);
   });
   const Eigen::Vector3d mu = -(settings.shell_inverse_inertia * (moment[0] + moment[1]));
   forEachHalf(params_.threads, [&](int half) {
     const auto [begin, end] = halfOf(n, half);
     Eigen::Vector3d push{0, 0, 0};  // a local, stored once (as the prediction's sums)
-    given[half] = turnShell(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift, mu, push);
+    given[half] = turnShellWide(x + begin, x0 + begin, m + begin, end - begin, settings.core_m, shift, mu,
+                                push, params_.wide_sweep);
     pushed[half] = push;
   });
   tie_push += pushed[0];

@@ -125,6 +125,63 @@ __attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size
 
 }  // namespace
 
+#if defined(DEFORM_SWEEP_AVX2)
+__attribute__((target("avx2"))) void outsideBandsAvx2(const Eigen::Vector3d* x, const uint32_t* pairs,
+                                                      const ElasticBand* bands, std::size_t begin,
+                                                      std::size_t end, std::vector<uint32_t>& which,
+                                                      std::vector<double>& length_m2) {
+  std::size_t k = begin;
+  for (; k + 4 <= end; k += 4) {
+    const uint32_t* p = pairs + 2 * k;
+    const Points4 a = loadPoints(x, p, 0), b = loadPoints(x, p, 1);
+    const __m256d dx = _mm256_sub_pd(a.x, b.x), dy = _mm256_sub_pd(a.y, b.y), dz = _mm256_sub_pd(a.z, b.z);
+    const __m256d l2 =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+    // The bands (shortest, longest) of four constraints, de-interleaved; holds: shortest < l2 < longest.
+    const __m256d b01 = _mm256_loadu_pd(&bands[k].shortest_m2);
+    const __m256d b23 = _mm256_loadu_pd(&bands[k + 2].shortest_m2);
+    const __m256d shortest = _mm256_permute4x64_pd(_mm256_unpacklo_pd(b01, b23), 0xD8);
+    const __m256d longest = _mm256_permute4x64_pd(_mm256_unpackhi_pd(b01, b23), 0xD8);
+    const __m256d holds =
+        _mm256_and_pd(_mm256_cmp_pd(l2, shortest, _CMP_GT_OQ), _mm256_cmp_pd(l2, longest, _CMP_LT_OQ));
+    const int outside = ~_mm256_movemask_pd(holds) & 0xF;
+    if (outside == 0) continue;
+    alignas(32) double lane[4];
+    _mm256_store_pd(lane, l2);
+    for (int j = 0; j < 4; ++j)
+      if (outside & (1 << j)) {
+        which.push_back(static_cast<uint32_t>(k + j));
+        length_m2.push_back(lane[j]);
+      }
+  }
+  for (; k < end; ++k) {
+    const double l2 = (x[pairs[2 * k]] - x[pairs[2 * k + 1]]).squaredNorm();
+    if (bands[k].holds(l2)) continue;
+    which.push_back(static_cast<uint32_t>(k));
+    length_m2.push_back(l2);
+  }
+}
+#endif
+
+void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const ElasticBand* bands,
+                  std::size_t begin, std::size_t end, bool wide, std::vector<uint32_t>& which,
+                  std::vector<double>& length_m2) {
+#if defined(DEFORM_SWEEP_AVX2)
+  if (wide && wideSweepAvailable()) {
+    outsideBandsAvx2(x, pairs, bands, begin, end, which, length_m2);
+    return;
+  }
+#else
+  (void)wide;
+#endif
+  for (std::size_t k = begin; k < end; ++k) {
+    const double l2 = (x[pairs[2 * k]] - x[pairs[2 * k + 1]]).squaredNorm();
+    if (bands[k].holds(l2)) continue;
+    which.push_back(static_cast<uint32_t>(k));
+    length_m2.push_back(l2);
+  }
+}
+
 bool wideSweepAvailable() {
 #if defined(DEFORM_SWEEP_AVX2)
   static const bool has = __builtin_cpu_supports("avx2");

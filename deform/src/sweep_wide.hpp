@@ -43,6 +43,13 @@ std::vector<uint32_t> interleavedPairs(const std::vector<Constraint>& constraint
 /// For each constraint k, 1 where constraints k .. k + 3 exist and no two of them share a point.
 std::vector<uint8_t> disjointFours(const std::vector<uint32_t>& pairs);
 
+/// Constraints of [begin, end) whose squared length |x_a - x_b|^2 is outside their elastic band
+/// (ElasticBand::holds false), in order, with that squared length (the same bits as Eigen's
+/// squaredNorm): appended to `which` and `length_m2`. `wide`: four at a time where AVX2 runs.
+void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const ElasticBand* bands,
+                  std::size_t begin, std::size_t end, bool wide, std::vector<uint32_t>& which,
+                  std::vector<double>& length_m2);
+
 /// Projects constraints [begin, end) in order (projectDistance, force-limited by `yield` when
 /// kLimited): four side by side wherever disjoint, one at a time elsewhere; `wide` false: one at a time.
 template <bool kLimited>

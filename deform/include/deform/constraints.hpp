@@ -7,6 +7,7 @@
 //   d_x = M^-1 grad C^T d_lambda                          (eq. 17)
 // with lambda reset to zero at the start of every substep (Macklin et al. 2019, "Small Steps").
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

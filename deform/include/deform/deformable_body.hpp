@@ -243,6 +243,9 @@ class DeformableBody {
   /// (deform/src/sweep_wide.hpp: they are swept side by side).
   std::vector<uint32_t> edge_pairs_, bend_pairs_;
   std::vector<uint8_t> edge_disjoint_, bend_disjoint_;
+  /// Scratch of plasticity, per half: the constraints outside their elastic band and their squared lengths.
+  std::vector<uint32_t> outside_[2];
+  std::vector<double> outside_m2_[2];
   std::vector<YieldForce> edge_yield_N_, spoke_yield_N_, bend_yield_N_;  ///< what each carries at most
   std::vector<ElasticBand> edge_band_, spoke_band_, bend_band_;          ///< where each stays elastic (cache)
   /// Per crush column, from its rest place (cache): the yield hardening has added [m], and whether it has

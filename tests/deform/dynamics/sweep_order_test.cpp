@@ -213,6 +213,7 @@ TEST_CASE("the wide sweep and prediction give the one-by-one bits", "[dynamics]"
     CHECK(a.state().plastic_work_J > 100);
     CHECK(hashState(a.state()) == hashState(b.state()));
     CHECK(a.state().positions_m == b.state().positions_m);
+    CHECK(a.state().plastic_work_J == b.state().plastic_work_J);
   }
 }
 
