@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "body_halves.hpp"
+#include "columns_wide.hpp"
 #include "sweep_wide.hpp"
 
 namespace deform {
@@ -112,42 +113,30 @@ void DeformableBody::sweepConstraints() {
   // The core moves after the sweep by the columns' summed pull (refreshDistanceFactors says why). Each
   // half of the columns sums its own pull and twist, and the halves are added in order: the same
   // sums on one thread or two.
-  struct Reaction {
-    Eigen::Vector3d pull{0, 0, 0}, twist{0, 0, 0};
-  };
+  using Reaction = ColumnReaction;
   Reaction reaction[2];
   const Eigen::Vector3d shift = core - settings.core_m;
   const uint32_t* column_order = settings.column_order.data();
+  ColumnSweep columns;
+  columns.x = x;
+  columns.w = w;
+  columns.mass_kg = m;
+  columns.order = column_order;
+  columns.spokes = spokes;
+  columns.rest_m = column_rest;
+  columns.shift_m = shift;
+  columns.core_m = settings.core_m;
+  columns.factors = column_factors;
+  columns.lambda = column_lambda;
+  columns.normals = normals;
+  columns.limits = spoke_limits;
+  columns.taken_m = column_taken;
+  columns.bottomed = column_bottomed;
+  columns.h2 = h2;
   auto sweepColumns = [&](std::size_t begin, std::size_t end, Reaction& result) {
     Reaction out;  // a local, stored once: the two halves' sums share a cache line
-    for (std::size_t j = begin; anchored && j < end; ++j) {
-      // Crush columns: each holds its point at its rest place, which moves with the core.
-      const std::size_t k = column_order[j];
-      const SpokeConstraint& c = spokes[k];
-      const uint32_t i = c.point;
-      const Eigen::Vector3d before = x[i];
-      const Eigen::Vector3d& rest = column_rest[k];
-      if constexpr (kLimited) {
-        const double taken = column_taken[k];      // what hardening has added to its yield, and whether it
-        const bool bottomed = column_bottomed[k];  // has crushed to its clamp (refreshColumn)
-        const double to_lambda = h2 / c.compliance_m_per_N;
-        projectColumn(
-            x[i], rest + shift, w[i], column_factors[k], column_lambda[k],
-            [&](const Eigen::Vector3d& push) {
-              // The column pushes along lambda: its point is displaced along -lambda.
-              if (bottomed && normals[k].dot(push) > 0) return HUGE_VAL;
-              return to_lambda * columnYield_m(normals[k], -push, spoke_limits[k], taken);
-            },
-            [&](const Eigen::Vector3d& next) {
-              return columnSurelyWithinLimit(normals[k], next, spoke_limits[k], to_lambda, bottomed);
-            });
-      } else {
-        projectColumn(x[i], rest + shift, w[i], column_factors[k], column_lambda[k], nullptr);
-      }
-      const Eigen::Vector3d pull = m[i] * (x[i] - before);
-      out.pull += pull;
-      out.twist += (rest - settings.core_m).cross(pull);
-    }
+    // Crush columns: each holds its point at its rest place, which moves with the core (columns_wide.hpp).
+    if (anchored) deform::sweepColumns<kLimited>(columns, begin, end, wide, out);
     for (std::size_t j = begin; !anchored && j < end; ++j) {
       const std::size_t k = column_order[j];
       const SpokeConstraint& c = spokes[k];

@@ -1,0 +1,178 @@
+// The crush columns' sweep, one or four at a time (columns_wide.hpp).
+#include "columns_wide.hpp"
+
+#include <deform/solver_params.hpp>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "simd_rows.hpp"
+
+namespace deform {
+namespace {
+
+/// The limit of column k on its multiplier `next` (projectColumn's Limit), as the sweep puts it.
+inline double columnLimit(const ColumnSweep& s, std::size_t k, double to_lambda,
+                          const Eigen::Vector3d& push) {
+  // The column pushes along lambda: its point is displaced along -lambda.
+  if (s.bottomed[k] && s.normals[k].dot(push) > 0) return HUGE_VAL;
+  return to_lambda * columnYield_m(s.normals[k], -push, s.limits[k], s.taken_m[k]);
+}
+
+template <bool kLimited>
+void sweepOne(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
+  const std::size_t k = s.order[j];
+  const SpokeConstraint& c = s.spokes[k];
+  const uint32_t i = c.point;
+  Eigen::Vector3d* x = s.x;
+  const Eigen::Vector3d before = x[i];
+  const Eigen::Vector3d& rest = s.rest_m[k];
+  if constexpr (kLimited) {
+    const double to_lambda = s.h2 / c.compliance_m_per_N;
+    const bool bottomed = s.bottomed[k];
+    projectColumn(
+        x[i], rest + s.shift_m, s.w[i], s.factors[k], s.lambda[k],
+        [&](const Eigen::Vector3d& push) { return columnLimit(s, k, to_lambda, push); },
+        [&](const Eigen::Vector3d& next) {
+          return columnSurelyWithinLimit(s.normals[k], next, s.limits[k], to_lambda, bottomed);
+        });
+  } else {
+    projectColumn(x[i], rest + s.shift_m, s.w[i], s.factors[k], s.lambda[k], nullptr);
+  }
+  const Eigen::Vector3d pull = s.mass_kg[i] * (x[i] - before);
+  out.pull += pull;
+  out.twist += (rest - s.core_m).cross(pull);
+}
+
+#if defined(DEFORM_SIMD_AVX2)
+__attribute__((target("avx2"))) inline Points4 plus(const Points4& a, const Points4& b) {
+  return {_mm256_add_pd(a.x, b.x), _mm256_add_pd(a.y, b.y), _mm256_add_pd(a.z, b.z)};
+}
+__attribute__((target("avx2"))) inline Points4 minus(const Points4& a, const Points4& b) {
+  return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
+}
+__attribute__((target("avx2"))) inline Points4 times(__m256d s, const Points4& a) {
+  return {_mm256_mul_pd(s, a.x), _mm256_mul_pd(s, a.y), _mm256_mul_pd(s, a.z)};
+}
+
+/// One component of lambda + (-c - alpha lambda) inverse.
+__attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256d c, __m256d alpha,
+                                                          __m256d inverse) {
+  const __m256d negative_c = _mm256_xor_pd(c, _mm256_set1_pd(-0.0));
+  return _mm256_add_pd(lambda,
+                       _mm256_mul_pd(_mm256_sub_pd(negative_c, _mm256_mul_pd(alpha, lambda)), inverse));
+}
+
+/// Columns order[j .. j + 3], each lane sweepOne's operations in their order.
+template <bool kLimited>
+__attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
+  const std::size_t k[4] = {s.order[j], s.order[j + 1], s.order[j + 2], s.order[j + 3]};
+  const uint32_t i[4] = {s.spokes[k[0]].point, s.spokes[k[1]].point, s.spokes[k[2]].point,
+                         s.spokes[k[3]].point};
+  Eigen::Vector3d* x = s.x;
+  const Points4 before = loadPoints4(x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
+  const Points4 rest = loadPoints4(s.rest_m[k[0]], s.rest_m[k[1]], s.rest_m[k[2]], s.rest_m[k[3]]);
+  const Points4 lambda = loadPoints4(s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
+  const __m256d alpha = _mm256_setr_pd(s.factors[k[0]].alpha_tilde, s.factors[k[1]].alpha_tilde,
+                                       s.factors[k[2]].alpha_tilde, s.factors[k[3]].alpha_tilde);
+  const __m256d inverse =
+      _mm256_setr_pd(s.factors[k[0]].inverse_denominator, s.factors[k[1]].inverse_denominator,
+                     s.factors[k[2]].inverse_denominator, s.factors[k[3]].inverse_denominator);
+  // c = x - (rest + shift); next = lambda + (-c - alpha lambda) / (w + w_core + alpha).
+  const Points4 c = minus(before, plus(rest, broadcast4(s.shift_m)));
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  Points4 next{nextLambda(lambda.x, c.x, alpha, inverse), nextLambda(lambda.y, c.y, alpha, inverse),
+               nextLambda(lambda.z, c.z, alpha, inverse)};
+  if constexpr (kLimited) {
+    const Points4 normal = loadPoints4(s.normals[k[0]], s.normals[k[1]], s.normals[k[2]], s.normals[k[3]]);
+    const __m256d to_lambda =
+        _mm256_div_pd(_mm256_set1_pd(s.h2),
+                      _mm256_setr_pd(s.spokes[k[0]].compliance_m_per_N, s.spokes[k[1]].compliance_m_per_N,
+                                     s.spokes[k[2]].compliance_m_per_N, s.spokes[k[3]].compliance_m_per_N));
+    // columnSurelyWithinLimit, lane by lane.
+    const __m256d along = dot4(normal, next);
+    const __m256d pushing_in = _mm256_cmp_pd(along, _mm256_setzero_pd(), _CMP_GT_OQ);
+    const __m256d bottomed = _mm256_castsi256_pd(
+        _mm256_setr_epi64x(-int64_t{s.bottomed[k[0]] != 0}, -int64_t{s.bottomed[k[1]] != 0},
+                           -int64_t{s.bottomed[k[2]] != 0}, -int64_t{s.bottomed[k[3]] != 0}));
+    const __m256d shorten = _mm256_setr_pd(s.limits[k[0]].shorten_m, s.limits[k[1]].shorten_m,
+                                           s.limits[k[2]].shorten_m, s.limits[k[3]].shorten_m);
+    const __m256d stretch = _mm256_setr_pd(s.limits[k[0]].stretch_m, s.limits[k[1]].stretch_m,
+                                           s.limits[k[2]].stretch_m, s.limits[k[3]].stretch_m);
+    const __m256d yield_m = _mm256_blendv_pd(stretch, shorten, pushing_in);
+    const __m256d magnitude2 = _mm256_mul_pd(dot4(next, next), _mm256_set1_pd(1 + kSurelyMargin));
+    const __m256d bound =
+        _mm256_mul_pd(_mm256_mul_pd(to_lambda, yield_m), _mm256_andnot_pd(sign, along));  // |along|
+    const __m256d within =
+        _mm256_or_pd(_mm256_and_pd(bottomed, pushing_in), _mm256_cmp_pd(magnitude2, bound, _CMP_LE_OQ));
+    const int beyond = ~_mm256_movemask_pd(within) & 0xF;
+    if (beyond != 0) {
+      // The lanes not surely within: projectColumn's limit, one at a time.
+      alignas(32) double nx[4], ny[4], nz[4], tl[4];
+      _mm256_store_pd(nx, next.x);
+      _mm256_store_pd(ny, next.y);
+      _mm256_store_pd(nz, next.z);
+      _mm256_store_pd(tl, to_lambda);
+      for (int lane = 0; lane < 4; ++lane) {
+        if (!(beyond & (1 << lane))) continue;
+        Eigen::Vector3d n(nx[lane], ny[lane], nz[lane]);
+        const double length = n.norm();
+        if (length > 0) {
+          const double limit = columnLimit(s, k[lane], tl[lane], n / length);
+          if (length > limit) n *= limit / length;
+        }
+        nx[lane] = n.x();
+        ny[lane] = n.y();
+        nz[lane] = n.z();
+      }
+      next = {_mm256_load_pd(nx), _mm256_load_pd(ny), _mm256_load_pd(nz)};
+    }
+  }
+  const __m256d w = _mm256_setr_pd(s.w[i[0]], s.w[i[1]], s.w[i[2]], s.w[i[3]]);
+  const Points4 after = plus(before, times(w, minus(next, lambda)));
+  storePoints4(after, x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
+  storePoints4(next, s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
+  const __m256d m = _mm256_setr_pd(s.mass_kg[i[0]], s.mass_kg[i[1]], s.mass_kg[i[2]], s.mass_kg[i[3]]);
+  const Points4 pull = times(m, minus(after, before));
+  const Points4 twist = cross4(minus(rest, broadcast4(s.core_m)), pull);
+  alignas(32) double px[4], py[4], pz[4], tx[4], ty[4], tz[4];
+  _mm256_store_pd(px, pull.x);
+  _mm256_store_pd(py, pull.y);
+  _mm256_store_pd(pz, pull.z);
+  _mm256_store_pd(tx, twist.x);
+  _mm256_store_pd(ty, twist.y);
+  _mm256_store_pd(tz, twist.z);
+  for (int lane = 0; lane < 4; ++lane) {
+    out.pull += Eigen::Vector3d(px[lane], py[lane], pz[lane]);
+    out.twist += Eigen::Vector3d(tx[lane], ty[lane], tz[lane]);
+  }
+}
+
+template <bool kLimited>
+__attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& s, std::size_t begin, std::size_t end,
+                                               ColumnReaction& out) {
+  std::size_t j = begin;
+  for (; j + 4 <= end; j += 4) sweepFour<kLimited>(s, j, out);
+  for (; j < end; ++j) sweepOne<kLimited>(s, j, out);
+}
+#endif
+
+}  // namespace
+
+template <bool kLimited>
+void sweepColumns(const ColumnSweep& s, std::size_t begin, std::size_t end, bool wide, ColumnReaction& out) {
+#if defined(DEFORM_SIMD_AVX2)
+  if (wide && wideSweepAvailable()) {
+    sweepAvx2<kLimited>(s, begin, end, out);
+    return;
+  }
+#else
+  (void)wide;
+#endif
+  for (std::size_t j = begin; j < end; ++j) sweepOne<kLimited>(s, j, out);
+}
+
+template void sweepColumns<true>(const ColumnSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
+template void sweepColumns<false>(const ColumnSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
+
+}  // namespace deform
