@@ -44,8 +44,8 @@ DeformableBody::DeformableBody(std::shared_ptr<const BodySettings> settings, con
   bend_pairs_ = interleavedPairs(
       settings_->bends, [](const BendConstraint& c) { return c.left; },
       [](const BendConstraint& c) { return c.right; });
-  edge_disjoint_ = disjointFours(edge_pairs_);
-  bend_disjoint_ = disjointFours(bend_pairs_);
+  edge_disjoint_ = disjointRuns(edge_pairs_);
+  bend_disjoint_ = disjointRuns(bend_pairs_);
   refreshYieldForces();
 }
 

@@ -10,16 +10,20 @@
 
 namespace deform {
 
-std::vector<uint8_t> disjointFours(const std::vector<uint32_t>& pairs) {
+std::vector<uint8_t> disjointRuns(const std::vector<uint32_t>& pairs) {
   const std::size_t n = pairs.size() / 2;
   std::vector<uint8_t> disjoint(n, 0);
-  for (std::size_t k = 0; k + 4 <= n; ++k) {
+  // Whether the `count` constraints from k on exist and share no point.
+  auto apart = [&](std::size_t k, std::size_t count) {
+    if (k + count > n) return false;
     const uint32_t* p = pairs.data() + 2 * k;
-    bool apart = true;
-    for (int i = 0; i < 8 && apart; ++i)
-      for (int j = i + 1; j < 8 && apart; ++j) apart = p[i] != p[j];
-    disjoint[k] = apart ? 1 : 0;
-  }
+    for (std::size_t i = 0; i < 2 * count; ++i)
+      for (std::size_t j = i + 1; j < 2 * count; ++j)
+        if (p[i] == p[j]) return false;
+    return true;
+  };
+  for (std::size_t k = 0; k < n; ++k)
+    disjoint[k] = apart(k, 8) ? kDisjointEight : apart(k, 4) ? kDisjointFour : 0;
   return disjoint;
 }
 
@@ -51,9 +55,15 @@ __attribute__((target("avx2"))) inline Points4 blendLive(const Points4& p, const
           _mm256_blendv_pd(p.z, moved.z, live)};
 }
 
+/// Four projected constraints, not yet stored.
+struct Projected4 {
+  Points4 a, b;
+  __m256d lambda;
+};
+
 /// Constraints k .. k + 3 (disjoint), each lane projectDistance's operations in its order.
 template <bool kLimited>
-__attribute__((target("avx2"))) inline void projectFour(const DistanceSweep& s, std::size_t k) {
+__attribute__((target("avx2"))) inline Projected4 projectFourUnstored(const DistanceSweep& s, std::size_t k) {
   const uint32_t* pairs = s.pairs + 2 * k;
   const __m256i pair_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pairs));  // a0 b0 .. a3 b3
   const __m256i split = _mm256_permutevar8x32_epi32(pair_lo, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
@@ -103,17 +113,30 @@ __attribute__((target("avx2"))) inline void projectFour(const DistanceSweep& s, 
                  {_mm256_sub_pd(pb.x, _mm256_mul_pd(wb, nx)), _mm256_sub_pd(pb.y, _mm256_mul_pd(wb, ny)),
                   _mm256_sub_pd(pb.z, _mm256_mul_pd(wb, nz))},
                  live);
-  _mm256_storeu_pd(s.lambda + k, _mm256_blendv_pd(lambda, next, live));
-  storePoints(s.x, pairs, 0, pa);
-  storePoints(s.x, pairs, 1, pb);
+  return {pa, pb, _mm256_blendv_pd(lambda, next, live)};
+}
+
+__attribute__((target("avx2"))) inline void store(const DistanceSweep& s, std::size_t k,
+                                                  const Projected4& p) {
+  _mm256_storeu_pd(s.lambda + k, p.lambda);
+  storePoints(s.x, s.pairs + 2 * k, 0, p.a);
+  storePoints(s.x, s.pairs + 2 * k, 1, p.b);
 }
 
 template <bool kLimited>
 __attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size_t begin, std::size_t end) {
   std::size_t k = begin;
   while (k < end) {
-    if (k + 4 <= end && s.disjoint[k]) {
-      projectFour<kLimited>(s, k);
+    if (k + 8 <= end && s.disjoint[k] == kDisjointEight) {
+      // Two fours whose eight constraints share no point, both loaded before either is stored: their
+      // square roots and divisions overlap.
+      const Projected4 first = projectFourUnstored<kLimited>(s, k);
+      const Projected4 second = projectFourUnstored<kLimited>(s, k + 4);
+      store(s, k, first);
+      store(s, k + 4, second);
+      k += 8;
+    } else if (k + 4 <= end && s.disjoint[k] != 0) {
+      store(s, k, projectFourUnstored<kLimited>(s, k));
       k += 4;
     } else {
       projectOne<kLimited>(s, k);

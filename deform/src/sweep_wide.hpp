@@ -19,7 +19,7 @@ struct DistanceSweep {
   Eigen::Vector3d* x = nullptr;       ///< positions [m]
   const double* w = nullptr;          ///< inverse masses [1/kg]
   const uint32_t* pairs = nullptr;    ///< the two points of constraint k at 2 k, 2 k + 1
-  const uint8_t* disjoint = nullptr;  ///< disjointFours: constraints k .. k + 3 share no point
+  const uint8_t* disjoint = nullptr;  ///< disjointRuns: from k on, eight or four share no point
   const double* rest_m = nullptr;     ///< rest lengths [m]
   const DistanceFactors* factors = nullptr;
   double* lambda = nullptr;           ///< multipliers [N s^2]
@@ -40,8 +40,11 @@ std::vector<uint32_t> interleavedPairs(const std::vector<Constraint>& constraint
   return pairs;
 }
 
-/// For each constraint k, 1 where constraints k .. k + 3 exist and no two of them share a point.
-std::vector<uint8_t> disjointFours(const std::vector<uint32_t>& pairs);
+/// disjointRuns' marks: constraints k .. k + 7 (or k .. k + 3) exist and no two of them share a point.
+inline constexpr uint8_t kDisjointEight = 2, kDisjointFour = 1;
+
+/// For each constraint k, kDisjointEight, kDisjointFour or 0.
+std::vector<uint8_t> disjointRuns(const std::vector<uint32_t>& pairs);
 
 /// Constraints of [begin, end) whose squared length |x_a - x_b|^2 is outside their elastic band
 /// (ElasticBand::holds false), in order, with that squared length (the same bits as Eigen's
