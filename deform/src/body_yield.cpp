@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "body_halves.hpp"
+#include "columns_wide.hpp"
 #include "sweep_wide.hpp"
 
 namespace deform {
@@ -158,12 +159,16 @@ void DeformableBody::plasticity(StepReport& report, const Eigen::Vector3d& core_
     }
     const auto [spokes_begin, spokes_end] = halfOf(settings.spokes.size(), half);
     if (settings.anchored_columns) {
-      for (std::size_t k = spokes_begin; k < spokes_end; ++k) {
+      // Nearly every column is elastic: skip those without a square root (columnSurelyElastic), found four
+      // at a time where the machine can.
+      outside.clear();
+      columnsNotSurelyElastic(x.data(), settings.spokes.data(), state_.column_rest_m.data(),
+                              settings.spoke_normal.data(), settings.spoke_yield.data(), shift, spokes_begin,
+                              spokes_end, params_.wide_sweep, outside);
+      for (const uint32_t k : outside) {
         const SpokeConstraint& c = settings.spokes[k];
         Eigen::Vector3d& rest = state_.column_rest_m[k];
         const Eigen::Vector3d local = x[c.point] - shift;
-        // Nearly every column is elastic: skip those without a square root (columnSurelyElastic).
-        if (columnSurelyElastic(settings.spoke_normal[k], local - rest, settings.spoke_yield[k])) continue;
         const Eigen::Vector3d moved =
             plasticColumnRest(local, rest, settings.rest_positions_m[c.point], settings.spoke_normal[k],
                               settings.spoke_rest_m[k], settings.spoke_yield[k], laws[c.material]);

@@ -148,6 +148,38 @@ __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t
   }
 }
 
+__attribute__((target("avx2"))) void notSurelyElasticAvx2(
+    const Eigen::Vector3d* x, const SpokeConstraint* spokes, const Eigen::Vector3d* rest_m,
+    const Eigen::Vector3d* normals, const YieldLimits* limits, const Eigen::Vector3d& shift_m,
+    std::size_t begin, std::size_t end, std::vector<uint32_t>& which) {
+  const Points4 shift = broadcast4(shift_m);
+  const __m256d margin = _mm256_set1_pd(1 + kSurelyMargin), sign = _mm256_set1_pd(-0.0);
+  std::size_t k = begin;
+  for (; k + 4 <= end; k += 4) {
+    const Points4 p = loadPoints4(x[spokes[k].point], x[spokes[k + 1].point], x[spokes[k + 2].point],
+                                  x[spokes[k + 3].point]);
+    const Points4 elastic =
+        minus(minus(p, shift), loadPoints4(rest_m[k], rest_m[k + 1], rest_m[k + 2], rest_m[k + 3]));
+    const __m256d along =
+        dot4(loadPoints4(normals[k], normals[k + 1], normals[k + 2], normals[k + 3]), elastic);
+    // The limits (stretch, shorten) of four columns, de-interleaved.
+    const __m256d l01 = _mm256_loadu_pd(&limits[k].stretch_m),
+                  l23 = _mm256_loadu_pd(&limits[k + 2].stretch_m);
+    const __m256d stretch = _mm256_permute4x64_pd(_mm256_unpacklo_pd(l01, l23), 0xD8);
+    const __m256d shorten = _mm256_permute4x64_pd(_mm256_unpackhi_pd(l01, l23), 0xD8);
+    const __m256d yield_m =
+        _mm256_blendv_pd(stretch, shorten, _mm256_cmp_pd(along, _mm256_setzero_pd(), _CMP_LT_OQ));
+    const __m256d surely = _mm256_cmp_pd(_mm256_mul_pd(dot4(elastic, elastic), margin),
+                                         _mm256_mul_pd(yield_m, _mm256_andnot_pd(sign, along)), _CMP_LE_OQ);
+    const int not_surely = ~_mm256_movemask_pd(surely) & 0xF;
+    for (int lane = 0; lane < 4; ++lane)
+      if (not_surely & (1 << lane)) which.push_back(static_cast<uint32_t>(k + lane));
+  }
+  for (; k < end; ++k)
+    if (!columnSurelyElastic(normals[k], x[spokes[k].point] - shift_m - rest_m[k], limits[k]))
+      which.push_back(static_cast<uint32_t>(k));
+}
+
 template <bool kLimited>
 __attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& s, std::size_t begin, std::size_t end,
                                                ColumnReaction& out) {
@@ -158,6 +190,23 @@ __attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& s, std::size_t
 #endif
 
 }  // namespace
+
+void columnsNotSurelyElastic(const Eigen::Vector3d* x, const SpokeConstraint* spokes,
+                             const Eigen::Vector3d* rest_m, const Eigen::Vector3d* normals,
+                             const YieldLimits* limits, const Eigen::Vector3d& shift_m, std::size_t begin,
+                             std::size_t end, bool wide, std::vector<uint32_t>& which) {
+#if defined(DEFORM_SIMD_AVX2)
+  if (wide && wideSweepAvailable()) {
+    notSurelyElasticAvx2(x, spokes, rest_m, normals, limits, shift_m, begin, end, which);
+    return;
+  }
+#else
+  (void)wide;
+#endif
+  for (std::size_t k = begin; k < end; ++k)
+    if (!columnSurelyElastic(normals[k], x[spokes[k].point] - shift_m - rest_m[k], limits[k]))
+      which.push_back(static_cast<uint32_t>(k));
+}
 
 template <bool kLimited>
 void sweepColumns(const ColumnSweep& s, std::size_t begin, std::size_t end, bool wide, ColumnReaction& out) {

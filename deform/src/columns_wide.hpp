@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace deform {
 
@@ -36,6 +37,13 @@ struct ColumnSweep {
 struct ColumnReaction {
   Eigen::Vector3d pull{0, 0, 0}, twist{0, 0, 0};
 };
+
+/// The columns k of [begin, end) not surely elastic (columnSurelyElastic false for the elastic displacement
+/// x - shift - rest), in order, appended to `which`; `wide`: four at a time where the machine can.
+void columnsNotSurelyElastic(const Eigen::Vector3d* x, const SpokeConstraint* spokes,
+                             const Eigen::Vector3d* rest_m, const Eigen::Vector3d* normals,
+                             const YieldLimits* limits, const Eigen::Vector3d& shift_m, std::size_t begin,
+                             std::size_t end, bool wide, std::vector<uint32_t>& which);
 
 /// Projects the columns order[begin .. end) in order, adding their reaction to `out`; `wide`: four at a
 /// time where the machine can.

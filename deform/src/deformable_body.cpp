@@ -429,7 +429,11 @@ void DeformableBody::endSubstep() {
   const Eigen::Vector3d* previous = previous_m_.data();
   forEachHalf(params_.threads, [&](int half) {
     const auto [begin, end] = halfOf(n, half);
-    for (std::size_t i = begin; i < end; ++i) v[i] = (x[i] - previous[i]) * inv_h;
+    // As flat arrays of coordinates, which the compiler vectorises (the same operations per coordinate).
+    const double* xs = x[0].data();
+    const double* ps = previous[0].data();
+    double* vs = v[0].data();
+    for (std::size_t j = 3 * begin; j < 3 * end; ++j) vs[j] = (xs[j] - ps[j]) * inv_h;
   });
   report.contact_work_J += sub_.contact_work_x_h * inv_h;
   report.obstacle_work_J += sub_.obstacle_work_x_h * inv_h;
