@@ -1,6 +1,8 @@
 // The substep's prediction, one point at a time or four side by side (prediction.hpp).
 #include "prediction.hpp"
 
+#include <deform/solver_params.hpp>
+
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -126,18 +128,13 @@ __attribute__((target("avx2"))) void predictAvx2(const Prediction& p, std::size_
   for (; i + 4 <= end; i += 4) predictFour<kInertial>(p, i, sum);
   for (; i < end; ++i) predictOne(p, i, sum);
 }
-
-bool hasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
 #endif
 
 }  // namespace
 
 void predictPoints(const Prediction& p, std::size_t begin, std::size_t end, bool wide, PredictionSums& sums) {
 #if defined(DEFORM_SIMD_AVX2)
-  if (wide && hasAvx2()) {
+  if (wide && wideSweepAvailable()) {
     if (p.inertial)
       predictAvx2<true>(p, begin, end, sums);
     else

@@ -1,12 +1,9 @@
-// The four-wide sweep of distance constraints (sweep_wide.hpp).
+// The wide sweep of distance constraints, and the band test of their plasticity (sweep_wide.hpp).
 #include "sweep_wide.hpp"
 
 #include <cmath>
 
 #include "simd_rows.hpp"
-#if defined(DEFORM_SIMD_AVX2)
-#define DEFORM_SWEEP_AVX2 1
-#endif
 
 namespace deform {
 
@@ -37,7 +34,7 @@ template <bool kLimited>
                   kLimited ? s.h2 * s.yield[k].shorten_N : HUGE_VAL);
 }
 
-#if defined(DEFORM_SWEEP_AVX2)
+#if defined(DEFORM_SIMD_AVX2)
 __attribute__((target("avx2"))) inline Points4 loadPoints(const Eigen::Vector3d* x, const uint32_t* pairs,
                                                           int side) {
   return loadPoints4(x[pairs[side]], x[pairs[2 + side]], x[pairs[4 + side]], x[pairs[6 + side]]);
@@ -148,7 +145,7 @@ __attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size
 
 }  // namespace
 
-#if defined(DEFORM_SWEEP_AVX2)
+#if defined(DEFORM_SIMD_AVX2)
 __attribute__((target("avx2"))) void outsideBandsAvx2(const Eigen::Vector3d* x, const uint32_t* pairs,
                                                       const ElasticBand* bands, std::size_t begin,
                                                       std::size_t end, std::vector<uint32_t>& which,
@@ -189,7 +186,7 @@ __attribute__((target("avx2"))) void outsideBandsAvx2(const Eigen::Vector3d* x, 
 void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const ElasticBand* bands,
                   std::size_t begin, std::size_t end, bool wide, std::vector<uint32_t>& which,
                   std::vector<double>& length_m2) {
-#if defined(DEFORM_SWEEP_AVX2)
+#if defined(DEFORM_SIMD_AVX2)
   if (wide && wideSweepAvailable()) {
     outsideBandsAvx2(x, pairs, bands, begin, end, which, length_m2);
     return;
@@ -206,7 +203,7 @@ void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const Elastic
 }
 
 bool wideSweepAvailable() {
-#if defined(DEFORM_SWEEP_AVX2)
+#if defined(DEFORM_SIMD_AVX2)
   static const bool has = __builtin_cpu_supports("avx2");
   return has;
 #else
@@ -216,7 +213,7 @@ bool wideSweepAvailable() {
 
 template <bool kLimited>
 void sweepDistances(const DistanceSweep& sweep, std::size_t begin, std::size_t end, bool wide) {
-#if defined(DEFORM_SWEEP_AVX2)
+#if defined(DEFORM_SIMD_AVX2)
   if (wide) {
     sweepAvx2<kLimited>(sweep, begin, end);
     return;

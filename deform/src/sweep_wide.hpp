@@ -1,9 +1,9 @@
 #pragma once
 // Distance constraints (edges, bends) swept four at a time where four neighbours in the sweep share no
-// point. Such projections commute, so projecting them side by side, each in its own SIMD lane with the
-// operations of projectDistance in the same order (no fused multiply-add), gives the one-by-one
-// Gauss-Seidel sweep's result to the bit (the test `the wide sweep...`). AVX2, chosen at run time; the
-// scalar sweep elsewhere.
+// point, and eight (two fours, loaded before either is stored) where eight do. Such projections commute,
+// so projecting them side by side, each in its own SIMD lane with the operations of projectDistance in the
+// same order (no fused multiply-add), gives the one-by-one Gauss-Seidel sweep's result to the bit (the
+// test `the wide sweep...`). AVX2, chosen at run time; the scalar sweep elsewhere.
 #include <deform/constraints.hpp>
 #include <deform/solver_params.hpp>
 
@@ -54,7 +54,8 @@ void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const Elastic
                   std::vector<double>& length_m2);
 
 /// Projects constraints [begin, end) in order (projectDistance, force-limited by `yield` when
-/// kLimited): four side by side wherever disjoint, one at a time elsewhere; `wide` false: one at a time.
+/// kLimited): eight or four side by side wherever disjoint, one at a time elsewhere; `wide` false: one
+/// at a time.
 template <bool kLimited>
 void sweepDistances(const DistanceSweep& sweep, std::size_t begin, std::size_t end, bool wide);
 
