@@ -45,16 +45,6 @@ void sweepOne(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
 }
 
 #if defined(DEFORM_SIMD_AVX2)
-__attribute__((target("avx2"))) inline Points4 plus(const Points4& a, const Points4& b) {
-  return {_mm256_add_pd(a.x, b.x), _mm256_add_pd(a.y, b.y), _mm256_add_pd(a.z, b.z)};
-}
-__attribute__((target("avx2"))) inline Points4 minus(const Points4& a, const Points4& b) {
-  return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
-}
-__attribute__((target("avx2"))) inline Points4 times(__m256d s, const Points4& a) {
-  return {_mm256_mul_pd(s, a.x), _mm256_mul_pd(s, a.y), _mm256_mul_pd(s, a.z)};
-}
-
 /// One component of lambda + (-c - alpha lambda) inverse.
 __attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256d c, __m256d alpha,
                                                           __m256d inverse) {

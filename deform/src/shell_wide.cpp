@@ -19,14 +19,6 @@ __attribute__((target("avx2"))) inline void addLanes(Eigen::Vector3d& sum, const
   for (int lane = 0; lane < 4; ++lane) sum += Eigen::Vector3d(px[lane], py[lane], pz[lane]);
 }
 
-__attribute__((target("avx2"))) inline Points4 minus(const Points4& a, const Points4& b) {
-  return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
-}
-
-__attribute__((target("avx2"))) inline Points4 times(__m256d s, const Points4& a) {
-  return {_mm256_mul_pd(s, a.x), _mm256_mul_pd(s, a.y), _mm256_mul_pd(s, a.z)};
-}
-
 __attribute__((target("avx2"))) Eigen::Vector3d shellRotationAvx2(const Eigen::Vector3d* x,
                                                                   const Eigen::Vector3d* x0,
                                                                   const double* mass_kg, std::size_t n,

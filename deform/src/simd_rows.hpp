@@ -64,6 +64,17 @@ __attribute__((target("avx2"))) inline __m256d dot4(const Points4& a, const Poin
                        _mm256_mul_pd(a.z, b.z));
 }
 
+/// a + b, a - b and s a, lane by lane.
+__attribute__((target("avx2"))) inline Points4 plus(const Points4& a, const Points4& b) {
+  return {_mm256_add_pd(a.x, b.x), _mm256_add_pd(a.y, b.y), _mm256_add_pd(a.z, b.z)};
+}
+__attribute__((target("avx2"))) inline Points4 minus(const Points4& a, const Points4& b) {
+  return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
+}
+__attribute__((target("avx2"))) inline Points4 times(__m256d s, const Points4& a) {
+  return {_mm256_mul_pd(s, a.x), _mm256_mul_pd(s, a.y), _mm256_mul_pd(s, a.z)};
+}
+
 /// A vector in every lane.
 __attribute__((target("avx2"))) inline Points4 broadcast4(const Eigen::Vector3d& v) {
   return {_mm256_set1_pd(v.x()), _mm256_set1_pd(v.y()), _mm256_set1_pd(v.z())};
