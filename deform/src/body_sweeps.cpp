@@ -133,23 +133,26 @@ void DeformableBody::sweepConstraints() {
   columns.taken_m = column_taken;
   columns.bottomed = column_bottomed;
   columns.h2 = h2;
+  SpokeSweep spoke_sweep;
+  spoke_sweep.x = x;
+  spoke_sweep.w = w;
+  spoke_sweep.mass_kg = m;
+  spoke_sweep.order = column_order;
+  spoke_sweep.spokes = spokes;
+  spoke_sweep.anchors_m = anchors;
+  spoke_sweep.core_m = core;
+  spoke_sweep.rest_m = spoke_rest;
+  spoke_sweep.factors = column_factors;
+  spoke_sweep.lambda = spoke_lambda;
+  spoke_sweep.yield = spoke_yield;
+  spoke_sweep.h2 = h2;
   auto sweepColumns = [&](std::size_t begin, std::size_t end, Reaction& result) {
     Reaction out;  // a local, stored once: the two halves' sums share a cache line
     // Crush columns: each holds its point at its rest place, which moves with the core (columns_wide.hpp).
-    if (anchored) deform::sweepColumns<kLimited>(columns, begin, end, wide, out);
-    for (std::size_t j = begin; !anchored && j < end; ++j) {
-      const std::size_t k = column_order[j];
-      const SpokeConstraint& c = spokes[k];
-      const Eigen::Vector3d before = x[c.point];
-      // The anchor is a copy, left unmoved (inverse mass 0 here): the core takes the sweep's summed pull.
-      Eigen::Vector3d anchor = core + anchors[k];
-      projectDistance(x[c.point], anchor, w[c.point], 0.0, spoke_rest[k], column_factors[k], spoke_lambda[k],
-                      kLimited ? -h2 * spoke_yield[k].stretch_N : -HUGE_VAL,
-                      kLimited ? h2 * spoke_yield[k].shorten_N : HUGE_VAL);
-      const Eigen::Vector3d pull = m[c.point] * (x[c.point] - before);
-      out.pull += pull;
-      out.twist += anchors[k].cross(pull);
-    }
+    if (anchored)
+      deform::sweepColumns<kLimited>(columns, begin, end, wide, out);
+    else
+      deform::sweepSpokes<kLimited>(spoke_sweep, begin, end, wide, out);
     result = out;
   };
   const auto& edge_end = settings.edge_half_end;

@@ -44,6 +44,22 @@ void sweepOne(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
   out.twist += (rest - s.core_m).cross(pull);
 }
 
+template <bool kLimited>
+void spokeOne(const SpokeSweep& s, std::size_t j, ColumnReaction& out) {
+  const std::size_t k = s.order[j];
+  const uint32_t i = s.spokes[k].point;
+  Eigen::Vector3d* x = s.x;
+  const Eigen::Vector3d before = x[i];
+  // The anchor is a copy, left unmoved (inverse mass 0 here): the core takes the sweep's summed pull.
+  Eigen::Vector3d anchor = s.core_m + s.anchors_m[k];
+  projectDistance(x[i], anchor, s.w[i], 0.0, s.rest_m[k], s.factors[k], s.lambda[k],
+                  kLimited ? -s.h2 * s.yield[k].stretch_N : -HUGE_VAL,
+                  kLimited ? s.h2 * s.yield[k].shorten_N : HUGE_VAL);
+  const Eigen::Vector3d pull = s.mass_kg[i] * (x[i] - before);
+  out.pull += pull;
+  out.twist += s.anchors_m[k].cross(pull);
+}
+
 #if defined(DEFORM_SIMD_AVX2)
 /// One component of lambda + (-c - alpha lambda) inverse.
 __attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256d c, __m256d alpha,
@@ -51,6 +67,68 @@ __attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256
   const __m256d negative_c = _mm256_xor_pd(c, _mm256_set1_pd(-0.0));
   return _mm256_add_pd(lambda,
                        _mm256_mul_pd(_mm256_sub_pd(negative_c, _mm256_mul_pd(alpha, lambda)), inverse));
+}
+
+/// Adds the reaction of four corrections, lane by lane in the sweep's order.
+__attribute__((target("avx2"))) inline void addReaction(const Points4& pull, const Points4& twist,
+                                                        ColumnReaction& out) {
+  alignas(32) double px[4], py[4], pz[4], tx[4], ty[4], tz[4];
+  _mm256_store_pd(px, pull.x);
+  _mm256_store_pd(py, pull.y);
+  _mm256_store_pd(pz, pull.z);
+  _mm256_store_pd(tx, twist.x);
+  _mm256_store_pd(ty, twist.y);
+  _mm256_store_pd(tz, twist.z);
+  for (int lane = 0; lane < 4; ++lane) {
+    out.pull += Eigen::Vector3d(px[lane], py[lane], pz[lane]);
+    out.twist += Eigen::Vector3d(tx[lane], ty[lane], tz[lane]);
+  }
+}
+
+/// Spokes order[j .. j + 3], each lane spokeOne's operations in their order.
+template <bool kLimited>
+__attribute__((target("avx2"))) void spokesFour(const SpokeSweep& s, std::size_t j, ColumnReaction& out) {
+  const std::size_t k[4] = {s.order[j], s.order[j + 1], s.order[j + 2], s.order[j + 3]};
+  const uint32_t i[4] = {s.spokes[k[0]].point, s.spokes[k[1]].point, s.spokes[k[2]].point,
+                         s.spokes[k[3]].point};
+  Eigen::Vector3d* x = s.x;
+  const Points4 before = loadPoints4(x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
+  const Points4 arm = loadPoints4(s.anchors_m[k[0]], s.anchors_m[k[1]], s.anchors_m[k[2]], s.anchors_m[k[3]]);
+  const Points4 d = minus(before, plus(broadcast4(s.core_m), arm));
+  const __m256d length = _mm256_sqrt_pd(dot4(d, d));
+  const __m256d live = _mm256_cmp_pd(length, _mm256_set1_pd(kMinConstraintLength_m), _CMP_NLT_UQ);
+  const __m256d c =
+      _mm256_sub_pd(length, _mm256_setr_pd(s.rest_m[k[0]], s.rest_m[k[1]], s.rest_m[k[2]], s.rest_m[k[3]]));
+  const __m256d alpha = _mm256_setr_pd(s.factors[k[0]].alpha_tilde, s.factors[k[1]].alpha_tilde,
+                                       s.factors[k[2]].alpha_tilde, s.factors[k[3]].alpha_tilde);
+  const __m256d inverse =
+      _mm256_setr_pd(s.factors[k[0]].inverse_denominator, s.factors[k[1]].inverse_denominator,
+                     s.factors[k[2]].inverse_denominator, s.factors[k[3]].inverse_denominator);
+  const __m256d lambda = _mm256_setr_pd(s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
+  __m256d next = nextLambda(lambda, c, alpha, inverse);
+  if constexpr (kLimited) {
+    // std::clamp(next, -h^2 F_stretch, h^2 F_shorten), the yield forces in float.
+    const __m256d lo = _mm256_mul_pd(_mm256_set1_pd(-s.h2),
+                                     _mm256_setr_pd(s.yield[k[0]].stretch_N, s.yield[k[1]].stretch_N,
+                                                    s.yield[k[2]].stretch_N, s.yield[k[3]].stretch_N));
+    const __m256d hi =
+        _mm256_mul_pd(_mm256_set1_pd(s.h2), _mm256_setr_pd(s.yield[k[0]].shorten_N, s.yield[k[1]].shorten_N,
+                                                           s.yield[k[2]].shorten_N, s.yield[k[3]].shorten_N));
+    next = _mm256_blendv_pd(next, hi, _mm256_cmp_pd(hi, next, _CMP_LT_OQ));
+    next = _mm256_blendv_pd(next, lo, _mm256_cmp_pd(next, lo, _CMP_LT_OQ));
+  }
+  const __m256d scale = _mm256_div_pd(_mm256_sub_pd(next, lambda), length);
+  const __m256d w = _mm256_setr_pd(s.w[i[0]], s.w[i[1]], s.w[i[2]], s.w[i[3]]);
+  const Points4 moved = plus(before, times(w, times(scale, d)));
+  const Points4 after{_mm256_blendv_pd(before.x, moved.x, live), _mm256_blendv_pd(before.y, moved.y, live),
+                      _mm256_blendv_pd(before.z, moved.z, live)};
+  storePoints4(after, x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
+  alignas(32) double stored[4];
+  _mm256_store_pd(stored, _mm256_blendv_pd(lambda, next, live));
+  for (int lane = 0; lane < 4; ++lane) s.lambda[k[lane]] = stored[lane];
+  const __m256d m = _mm256_setr_pd(s.mass_kg[i[0]], s.mass_kg[i[1]], s.mass_kg[i[2]], s.mass_kg[i[3]]);
+  const Points4 pull = times(m, minus(after, before));
+  addReaction(pull, cross4(arm, pull), out);
 }
 
 /// Columns order[j .. j + 3], each lane sweepOne's operations in their order.
@@ -124,18 +202,15 @@ __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t
   storePoints4(next, s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
   const __m256d m = _mm256_setr_pd(s.mass_kg[i[0]], s.mass_kg[i[1]], s.mass_kg[i[2]], s.mass_kg[i[3]]);
   const Points4 pull = times(m, minus(after, before));
-  const Points4 twist = cross4(minus(rest, broadcast4(s.core_m)), pull);
-  alignas(32) double px[4], py[4], pz[4], tx[4], ty[4], tz[4];
-  _mm256_store_pd(px, pull.x);
-  _mm256_store_pd(py, pull.y);
-  _mm256_store_pd(pz, pull.z);
-  _mm256_store_pd(tx, twist.x);
-  _mm256_store_pd(ty, twist.y);
-  _mm256_store_pd(tz, twist.z);
-  for (int lane = 0; lane < 4; ++lane) {
-    out.pull += Eigen::Vector3d(px[lane], py[lane], pz[lane]);
-    out.twist += Eigen::Vector3d(tx[lane], ty[lane], tz[lane]);
-  }
+  addReaction(pull, cross4(minus(rest, broadcast4(s.core_m)), pull), out);
+}
+
+template <bool kLimited>
+__attribute__((target("avx2"))) void spokesAvx2(const SpokeSweep& s, std::size_t begin, std::size_t end,
+                                                ColumnReaction& out) {
+  std::size_t j = begin;
+  for (; j + 4 <= end; j += 4) spokesFour<kLimited>(s, j, out);
+  for (; j < end; ++j) spokeOne<kLimited>(s, j, out);
 }
 
 __attribute__((target("avx2"))) void notSurelyElasticAvx2(
@@ -211,6 +286,21 @@ void sweepColumns(const ColumnSweep& s, std::size_t begin, std::size_t end, bool
   for (std::size_t j = begin; j < end; ++j) sweepOne<kLimited>(s, j, out);
 }
 
+template <bool kLimited>
+void sweepSpokes(const SpokeSweep& s, std::size_t begin, std::size_t end, bool wide, ColumnReaction& out) {
+#if defined(DEFORM_SIMD_AVX2)
+  if (wide && wideSweepAvailable()) {
+    spokesAvx2<kLimited>(s, begin, end, out);
+    return;
+  }
+#else
+  (void)wide;
+#endif
+  for (std::size_t j = begin; j < end; ++j) spokeOne<kLimited>(s, j, out);
+}
+
+template void sweepSpokes<true>(const SpokeSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
+template void sweepSpokes<false>(const SpokeSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
 template void sweepColumns<true>(const ColumnSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
 template void sweepColumns<false>(const ColumnSweep&, std::size_t, std::size_t, bool, ColumnReaction&);
 

@@ -38,6 +38,29 @@ struct ColumnReaction {
   Eigen::Vector3d pull{0, 0, 0}, twist{0, 0, 0};
 };
 
+/// What the spokes' sweep reads and writes (spokes: distance constraints from each point to its anchor on
+/// the core, the non-anchored columns).
+struct SpokeSweep {
+  Eigen::Vector3d* x = nullptr;  ///< positions [m]
+  const double* w = nullptr;     ///< inverse masses [1/kg]
+  const double* mass_kg = nullptr;
+  const uint32_t* order = nullptr;  ///< the spokes in sweep order (BodySettings::column_order)
+  const SpokeConstraint* spokes = nullptr;
+  const Eigen::Vector3d* anchors_m = nullptr;  ///< each spoke's anchor relative to the core [m]
+  Eigen::Vector3d core_m{0, 0, 0};             ///< the core's place now [m]
+  const double* rest_m = nullptr;              ///< rest lengths [m]
+  const DistanceFactors* factors = nullptr;
+  double* lambda = nullptr;           ///< multipliers [N s^2]
+  const YieldForce* yield = nullptr;  ///< yield forces (kLimited)
+  double h2 = 0;                      ///< substep length squared [s^2]
+};
+
+/// Projects the spokes order[begin .. end) in order (projectDistance to a copy of the anchor, which the
+/// core's summed reaction moves after the sweep), adding their reaction to `out`; `wide`: four at a time
+/// where the machine can (their points are distinct).
+template <bool kLimited>
+void sweepSpokes(const SpokeSweep& s, std::size_t begin, std::size_t end, bool wide, ColumnReaction& out);
+
 /// The columns k of [begin, end) not surely elastic (columnSurelyElastic false for the elastic displacement
 /// x - shift - rest), in order, appended to `which`; `wide`: four at a time where the machine can.
 void columnsNotSurelyElastic(const Eigen::Vector3d* x, const SpokeConstraint* spokes,

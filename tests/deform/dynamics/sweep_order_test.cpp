@@ -184,15 +184,15 @@ TEST_CASE("the wide sweep and prediction give the one-by-one bits", "[dynamics]"
     test_support::reportSkip("this machine has no AVX2: the wide sweep is not run");
     return;
   }
-  // Force-limited crush columns (0, 2), unlimited spokes (1) and unlimited columns (3); with the inertial
-  // forces (the chassis turning and braking) and without (2); an impulse large enough for the
-  // prediction's travel cap now and then.
-  for (const int variant : {0, 1, 2, 3}) {
+  // Force-limited crush columns (0, 2), unlimited spokes (1), unlimited columns (3) and force-limited
+  // spokes (4); with the inertial forces (the chassis turning and braking) and without (2); an impulse
+  // large enough for the prediction's travel cap now and then.
+  for (const int variant : {0, 1, 2, 3, 4}) {
     BodyDescription d;
-    d.anchored_columns = variant != 1;
+    d.anchored_columns = variant != 1 && variant != 4;
     const auto settings = makeSettings(sedanControlMesh(500), 1500.0, d);
     SolverParams narrow;
-    narrow.yield_limited = variant == 0 || variant == 2;
+    narrow.yield_limited = variant == 0 || variant == 2 || variant == 4;
     narrow.inertial_scale = variant == 2 ? 0.0 : 1.0;
     narrow.wide_sweep = false;
     SolverParams wide = narrow;
