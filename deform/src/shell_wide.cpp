@@ -56,7 +56,13 @@ __attribute__((target("avx2"))) Eigen::Vector3d turnShellAvx2(Eigen::Vector3d* x
                  x[i + 1], x[i + 2], x[i + 3]);
     addLanes(push, times(m, dx));
   }
-  given += turnShell(x + i, x0 + i, mass_kg + i, n - i, core_m, shift_m, mu, push);
+  // The last points one at a time, into the same sums (turnShell's loop).
+  for (; i < n; ++i) {
+    const Eigen::Vector3d dx = mu.cross(x0[i] - core_m);
+    given += mass_kg[i] * (x[i] - shift_m - core_m).cross(dx);
+    x[i] += dx;
+    push += mass_kg[i] * dx;
+  }
   return given;
 }
 #endif

@@ -208,6 +208,10 @@ TEST_CASE("the wide sweep and prediction give the one-by-one bits", "[dynamics]"
       REQUIRE(ra.damping_loss_J == rb.damping_loss_J);
       REQUIRE(ra.inertial_work_J == rb.inertial_work_J);
       REQUIRE(ra.core_impulse_Ns == rb.core_impulse_Ns);
+      // What the chassis takes (the shell orientation constraint's sum among it), and the obstacles' share.
+      REQUIRE(ra.core_angular_impulse_Nms == rb.core_angular_impulse_Nms);
+      REQUIRE(ra.contact_impulse_Ns == rb.contact_impulse_Ns);
+      REQUIRE(ra.plastic_work_J == rb.plastic_work_J);
     }
     INFO("variant " << variant);
     // Force-limited edges yield (the clamp in the lanes), and the dent is deep enough to matter.
