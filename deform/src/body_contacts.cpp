@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "body_halves.hpp"
+
 namespace deform {
 namespace {
 
@@ -97,27 +99,41 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
   // and being thrown out the next, a jitter.
   contacts_.clear();
   face_contacts_.clear();
-  auto& x = state_.positions_m;
-  Penetration p;
+  const auto& x = state_.positions_m;
   uint32_t inside = 0;
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     const ContactShape& shape = shapes[k];
     const bool surface = k < inputs.surface_contact.size() && inputs.surface_contact[k];
-    for (uint32_t i = 0; i < x.size(); ++i)
-      if (penetration(shape, x[i], p, params_.contact_margin_m)) {
-        // Only a point that moved further than its depth relative to the obstacle this substep can have
-        // come in by another face than the nearest (the entry face is at most that travel away).
-        const Eigen::Vector3d start_m =
-            previous_m_[i] + h * obstacleVelocity(inputs, static_cast<uint32_t>(k), previous_m_[i]);
-        if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
-          enteredAt(shape, start_m, x[i], p);
-        const Eigen::Vector3d surface_m = x[i] + p.depth_m * p.normal;
-        const double lingering_m =
-            lingeringDepth(p.normal, surface_m, start_m, params_.max_depenetration_mps, h);
-        contacts_.push_back(
-            {static_cast<uint32_t>(k), i, p.normal, surface_m - lingering_m * p.normal, start_m});
-        inside += p.depth_m > 0;
-      }
+    // The points in two halves (SolverParams::threads), each into its own list, the lists then joined half
+    // 0 first: the contacts in point order, as one pass over all points gives them.
+    uint32_t inside_of_half[2] = {0, 0};
+    forEachHalf(params_.threads, [&](int half) {
+      std::vector<ContactPoint>& found = contacts_of_half_[half];
+      found.clear();
+      uint32_t found_inside = 0;
+      Penetration p;
+      const auto [begin, end] = halfOf(x.size(), half);
+      for (auto i = static_cast<uint32_t>(begin); i < end; ++i)
+        if (penetration(shape, x[i], p, params_.contact_margin_m)) {
+          // Only a point that moved further than its depth relative to the obstacle this substep can have
+          // come in by another face than the nearest (the entry face is at most that travel away).
+          const Eigen::Vector3d start_m =
+              previous_m_[i] + h * obstacleVelocity(inputs, static_cast<uint32_t>(k), previous_m_[i]);
+          if (p.depth_m > 0 && (x[i] - start_m).squaredNorm() > p.depth_m * p.depth_m)
+            enteredAt(shape, start_m, x[i], p);
+          const Eigen::Vector3d surface_m = x[i] + p.depth_m * p.normal;
+          const double lingering_m =
+              lingeringDepth(p.normal, surface_m, start_m, params_.max_depenetration_mps, h);
+          found.push_back(
+              {static_cast<uint32_t>(k), i, p.normal, surface_m - lingering_m * p.normal, start_m});
+          found_inside += p.depth_m > 0;
+        }
+      inside_of_half[half] = found_inside;
+    });
+    for (int half : {0, 1}) {
+      contacts_.insert(contacts_.end(), contacts_of_half_[half].begin(), contacts_of_half_[half].end());
+      inside += inside_of_half[half];
+    }
     if (surface) inside += findFaceContacts(shape, static_cast<uint32_t>(k), inputs, h);
   }
   return inside;

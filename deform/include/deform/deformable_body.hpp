@@ -253,6 +253,7 @@ class DeformableBody {
   std::vector<double> column_taken_m_;
   std::vector<uint8_t> column_bottomed_;
   std::vector<ContactPoint> contacts_;
+  std::vector<ContactPoint> contacts_of_half_[2];  ///< findContacts' scratch: each half's, in point order
   std::vector<FaceContact> face_contacts_;
   /// A point an obstacle's contact moved this substep (capDeviation): the obstacle and its normal.
   struct HeldPoint {
