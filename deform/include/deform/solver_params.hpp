@@ -21,10 +21,11 @@ struct SolverParams {
   /// wait by spinning, and two processes each sweeping on two threads of a 2-core machine ran 10-100x
   /// slower (the scenes keep 1 and spread their cars over the threads instead). >= 1.
   uint32_t threads = 1;
-  /// Four at a time where the machine has AVX2: the edges (or bends) where four neighbours in the sweep
-  /// share no point, and the prediction's points. The state and the step's sums are the same to the bit
-  /// either way (each lane does the one-at-a-time operations in their order): the knob is there to
-  /// measure the gain (`bench step --narrow`) and to test that sameness.
+  /// Four at a time where the machine has AVX2: the edges (or bends) where four (or eight) neighbours in
+  /// the sweep share no point, the crush columns and spokes, the prediction, the shell orientation
+  /// constraint and plasticity's tests. The state and the step's sums are the same to the bit either way
+  /// (each lane does the one-at-a-time operations in their order): the knob is there to measure the gain
+  /// (`bench step --narrow`) and to test that sameness.
   bool wide_sweep = true;
   /// Viscous drag on the control points' motion relative to the chassis, per unit mass [1/s]: with no
   /// constraint acting, a speed decays as exp(-damping_per_s t) (applied exactly per substep, so it is
