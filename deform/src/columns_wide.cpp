@@ -213,7 +213,8 @@ __attribute__((target("avx2"))) void spokesAvx2(const SpokeSweep& s, std::size_t
   for (; j < end; ++j) spokeOne<kLimited>(s, j, out);
 }
 
-__attribute__((target("avx2"))) void notSurelyElasticAvx2(
+/// columnsNotSurelyElastic over the whole fours of [begin, end); returns where they end.
+__attribute__((target("avx2"))) std::size_t notSurelyElasticAvx2(
     const Eigen::Vector3d* x, const SpokeConstraint* spokes, const Eigen::Vector3d* rest_m,
     const Eigen::Vector3d* normals, const YieldLimits* limits, const Eigen::Vector3d& shift_m,
     std::size_t begin, std::size_t end, std::vector<uint32_t>& which) {
@@ -240,9 +241,7 @@ __attribute__((target("avx2"))) void notSurelyElasticAvx2(
     for (int lane = 0; lane < 4; ++lane)
       if (not_surely & (1 << lane)) which.push_back(static_cast<uint32_t>(k + lane));
   }
-  for (; k < end; ++k)
-    if (!columnSurelyElastic(normals[k], x[spokes[k].point] - shift_m - rest_m[k], limits[k]))
-      which.push_back(static_cast<uint32_t>(k));
+  return k;
 }
 
 template <bool kLimited>
@@ -260,15 +259,14 @@ void columnsNotSurelyElastic(const Eigen::Vector3d* x, const SpokeConstraint* sp
                              const Eigen::Vector3d* rest_m, const Eigen::Vector3d* normals,
                              const YieldLimits* limits, const Eigen::Vector3d& shift_m, std::size_t begin,
                              std::size_t end, bool wide, std::vector<uint32_t>& which) {
+  std::size_t k = begin;
 #if defined(DEFORM_SIMD_AVX2)
-  if (wide && wideSweepAvailable()) {
-    notSurelyElasticAvx2(x, spokes, rest_m, normals, limits, shift_m, begin, end, which);
-    return;
-  }
+  if (wide && wideSweepAvailable())
+    k = notSurelyElasticAvx2(x, spokes, rest_m, normals, limits, shift_m, begin, end, which);
 #else
   (void)wide;
 #endif
-  for (std::size_t k = begin; k < end; ++k)
+  for (; k < end; ++k)
     if (!columnSurelyElastic(normals[k], x[spokes[k].point] - shift_m - rest_m[k], limits[k]))
       which.push_back(static_cast<uint32_t>(k));
 }

@@ -146,10 +146,10 @@ __attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size
 }  // namespace
 
 #if defined(DEFORM_SIMD_AVX2)
-__attribute__((target("avx2"))) void outsideBandsAvx2(const Eigen::Vector3d* x, const uint32_t* pairs,
-                                                      const ElasticBand* bands, std::size_t begin,
-                                                      std::size_t end, std::vector<uint32_t>& which,
-                                                      std::vector<double>& length_m2) {
+/// outsideBands over the whole fours of [begin, end); returns where they end (the rest is the caller's).
+__attribute__((target("avx2"))) static std::size_t outsideBandsAvx2(
+    const Eigen::Vector3d* x, const uint32_t* pairs, const ElasticBand* bands, std::size_t begin,
+    std::size_t end, std::vector<uint32_t>& which, std::vector<double>& length_m2) {
   std::size_t k = begin;
   for (; k + 4 <= end; k += 4) {
     const uint32_t* p = pairs + 2 * k;
@@ -174,27 +174,20 @@ __attribute__((target("avx2"))) void outsideBandsAvx2(const Eigen::Vector3d* x, 
         length_m2.push_back(lane[j]);
       }
   }
-  for (; k < end; ++k) {
-    const double l2 = (x[pairs[2 * k]] - x[pairs[2 * k + 1]]).squaredNorm();
-    if (bands[k].holds(l2)) continue;
-    which.push_back(static_cast<uint32_t>(k));
-    length_m2.push_back(l2);
-  }
+  return k;
 }
 #endif
 
 void outsideBands(const Eigen::Vector3d* x, const uint32_t* pairs, const ElasticBand* bands,
                   std::size_t begin, std::size_t end, bool wide, std::vector<uint32_t>& which,
                   std::vector<double>& length_m2) {
+  std::size_t k = begin;
 #if defined(DEFORM_SIMD_AVX2)
-  if (wide && wideSweepAvailable()) {
-    outsideBandsAvx2(x, pairs, bands, begin, end, which, length_m2);
-    return;
-  }
+  if (wide && wideSweepAvailable()) k = outsideBandsAvx2(x, pairs, bands, begin, end, which, length_m2);
 #else
   (void)wide;
 #endif
-  for (std::size_t k = begin; k < end; ++k) {
+  for (; k < end; ++k) {
     const double l2 = (x[pairs[2 * k]] - x[pairs[2 * k + 1]]).squaredNorm();
     if (bands[k].holds(l2)) continue;
     which.push_back(static_cast<uint32_t>(k));
