@@ -85,19 +85,55 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
   constexpr int kMostPasses = 8;
   const double w_core = core_inverse_mass_per_kg_;
   const auto& w = settings.inverse_mass_per_kg;
+  const auto deviation = [&](std::size_t i) {
+    return Eigen::Vector3d(x[i] - (settings.rest_positions_m[i] + core - settings.core_m));
+  };
+  const auto project = [&](std::size_t i) {
+    const Eigen::Vector3d d = deviation(i);
+    const double cap = settings.max_deviation_m[i];
+    const double squared = d.squaredNorm();
+    if (squared <= cap * cap || !(w[i] + w_core > 0)) return;
+    const double length = std::sqrt(squared);
+    const Eigen::Vector3d correction = ((length - cap) / ((w[i] + w_core) * length)) * d;
+    x[i] -= w[i] * correction;
+    core += w_core * correction;
+    tie_push -= m[i] * w[i] * correction;  // the point's momentum change; the core's is opposite
+  };
+  // Most points are far inside their caps. The halves (SolverParams::threads) first list the points
+  // within kNear_m of theirs, with the core where it stands; the pass projects only those, in point
+  // order, while the core has moved less than kNear_m, so every point left out is surely inside its cap
+  // (by the triangle inequality, with 1e-9 m to spare for rounding) and projecting it would do nothing:
+  // the result is the one-by-one pass's, bit for bit. Past that move, the pass checks every point.
+  // Each thread reading only its own half keeps the positions in its own cache for the next substep.
+  // Without SolverParams::wide_sweep, every point is checked one by one (the reference).
+  constexpr double kNear_m = 1e-3, kRounding_m = 1e-9;
   for (int pass = 0; pass < kMostPasses; ++pass) {
     const Eigen::Vector3d core_before = core;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
-      const double cap = settings.max_deviation_m[i];
-      const double squared = d.squaredNorm();
-      if (squared <= cap * cap || !(w[i] + w_core > 0)) continue;
-      const double length = std::sqrt(squared);
-      const Eigen::Vector3d correction = ((length - cap) / ((w[i] + w_core) * length)) * d;
-      x[i] -= w[i] * correction;
-      core += w_core * correction;
-      tie_push -= m[i] * w[i] * correction;  // the point's momentum change; the core's is opposite
+    if (!params_.wide_sweep) {
+      for (std::size_t i = 0; i < n; ++i) project(i);
+      if ((core - core_before).squaredNorm() <= 1e-24) break;
+      continue;
     }
+    forEachHalf(params_.threads, [&](int half) {
+      std::vector<uint32_t>& near = near_cap_of_half_[half];
+      near.clear();
+      const auto [begin, end] = halfOf(n, half);
+      for (std::size_t i = begin; i < end; ++i) {
+        const double reach = settings.max_deviation_m[i] - kNear_m;
+        if (reach <= 0 || deviation(i).squaredNorm() > reach * reach)
+          near.push_back(static_cast<uint32_t>(i));
+      }
+    });
+    std::size_t next = 0;  // the first point not yet projected in this pass
+    for (const auto& near : near_cap_of_half_) {
+      for (const uint32_t i : near) {
+        if ((core - core_before).norm() >= kNear_m - kRounding_m) break;
+        project(i);
+        next = i + 1;
+      }
+    }
+    if ((core - core_before).norm() >= kNear_m - kRounding_m)
+      for (std::size_t i = next; i < n; ++i) project(i);
     if ((core - core_before).squaredNorm() <= 1e-24) break;  // under 1e-12 m
   }
 }

@@ -261,8 +261,9 @@ class DeformableBody {
     Eigen::Vector3d normal;
   };
   std::vector<HeldPoint> held_;
-  std::vector<ContactShape> placed_;     ///< the obstacles where they are in the current substep
-  std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
+  std::vector<uint32_t> near_cap_of_half_[2];  ///< capDeviation's scratch: each half's, in point order
+  std::vector<ContactShape> placed_;           ///< the obstacles where they are in the current substep
+  std::vector<ShiftedSupport> shifted_;        ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
   Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
   double core_inverse_mass_per_kg_ = 0;

@@ -14,18 +14,21 @@ struct SolverParams {
   /// Gauss-Seidel sweeps over every constraint per substep. >= 1.
   uint32_t iterations = 1;
   /// Threads that step this body: 1, or 2 for its two halves side by side (OpenMP; more are taken as
-  /// 2): the sweep (BodySettings::edge_half_end), the prediction, plasticity, the shell's orientation
-  /// and the velocities. The state is bit-identical for 1 and 2: each half visits the same items in the
-  /// same order and keeps its own sums, added half 0 first. Inside a parallel region (bodies stepped side
-  /// by side) the body runs on its caller's thread. Worth it only with cores to spare: OpenMP's threads
-  /// wait by spinning, and two processes each sweeping on two threads of a 2-core machine ran 10-100x
-  /// slower (the scenes keep 1 and spread their cars over the threads instead). >= 1.
+  /// 2): the sweep (BodySettings::edge_half_end), the prediction, the contact search, plasticity,
+  /// the shell's orientation, the visual constraint's search for points near their caps and the velocities.
+  /// The state is bit-identical for 1 and 2: each half visits the same items in the same order and keeps its
+  /// own sums, added half 0 first. Inside a parallel region (bodies stepped side by side) the body runs on
+  /// its caller's thread. Worth it only with cores to spare: OpenMP's threads wait by spinning, and two
+  /// processes each sweeping on two threads of a 2-core machine ran 10-100x slower (the scenes keep 1 and
+  /// spread their cars over the threads instead). >= 1.
   uint32_t threads = 1;
   /// Four at a time where the machine has AVX2: the edges (or bends) where four (or eight) neighbours in
   /// the sweep share no point, the crush columns and spokes, the prediction, the shell orientation
-  /// constraint and plasticity's tests. The state and the step's sums are the same to the bit either way
-  /// (each lane does the one-at-a-time operations in their order): the knob is there to measure the gain
-  /// (`bench step --narrow`) and to test that sameness.
+  /// constraint and plasticity's tests; and the visual constraint projects only the points near their
+  /// caps (listed by the halves), not every point. The state and the step's sums are the same to the bit
+  /// either way (each lane does the one-at-a-time operations in their order; a point left out is surely
+  /// inside its cap): the knob is there to measure the gain (`bench step --narrow`) and to test that
+  /// sameness.
   bool wide_sweep = true;
   /// Viscous drag on the control points' motion relative to the chassis, per unit mass [1/s]: with no
   /// constraint acting, a speed decays as exp(-damping_per_s t) (applied exactly per substep, so it is
