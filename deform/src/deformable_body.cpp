@@ -368,10 +368,27 @@ void DeformableBody::beginSubstep(uint32_t k) {
   report.contact_points += findContacts(placed_, inputs, h);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
-  std::fill(edge_lambda_.begin(), edge_lambda_.end(), 0.0);
-  std::fill(spoke_lambda_.begin(), spoke_lambda_.end(), 0.0);
-  std::fill(column_lambda_.begin(), column_lambda_.end(), Eigen::Vector3d::Zero());
-  std::fill(bend_lambda_.begin(), bend_lambda_.end(), 0.0);
+  // Each half clears the multipliers its sweep writes (those across the cut with half 0), so on two
+  // threads they are in the cache of the thread that uses them.
+  forEachHalf(params_.threads, [&](int half) {
+    const auto clear = [half](auto& lambda, const std::array<uint32_t, 2>& half_end) {
+      using Value = typename std::decay_t<decltype(lambda)>::value_type;
+      const auto begin = lambda.begin();
+      if (half == 0) {
+        std::fill(begin, begin + half_end[0], Value{});
+        std::fill(begin + half_end[1], lambda.end(), Value{});
+      } else {
+        std::fill(begin + half_end[0], begin + half_end[1], Value{});
+      }
+    };
+    clear(edge_lambda_, settings.edge_half_end);
+    clear(bend_lambda_, settings.bend_half_end);
+    const auto [begin, end] = halfOf(settings.spokes.size(), half);
+    if (settings.anchored_columns)
+      std::fill(column_lambda_.begin() + begin, column_lambda_.begin() + end, Eigen::Vector3d::Zero());
+    else
+      std::fill(spoke_lambda_.begin() + begin, spoke_lambda_.begin() + end, 0.0);
+  });
 }
 
 void DeformableBody::settleSubstep() {
