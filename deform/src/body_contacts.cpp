@@ -107,6 +107,7 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
     // The points in two halves (SolverParams::threads), each into its own list, the lists then joined half
     // 0 first: the contacts in point order, as one pass over all points gives them.
     uint32_t inside_of_half[2] = {0, 0};
+    const SurelyApart apart(shape, params_.contact_margin_m);
     forEachHalf(params_.threads, [&](int half) {
       std::vector<ContactPoint>& found = contacts_of_half_[half];
       found.clear();
@@ -114,7 +115,7 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
       Penetration p;
       const auto [begin, end] = halfOf(x.size(), half);
       for (auto i = static_cast<uint32_t>(begin); i < end; ++i)
-        if (penetration(shape, x[i], p, params_.contact_margin_m)) {
+        if (!apart(x[i]) && penetration(shape, x[i], p, params_.contact_margin_m)) {
           // Only a point that moved further than its depth relative to the obstacle this substep can have
           // come in by another face than the nearest (the entry face is at most that travel away).
           const Eigen::Vector3d start_m =

@@ -171,6 +171,22 @@ bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Pene
   return std::visit([&](const auto& s) { return inside(s, point_m, margin_m, out); }, shape);
 }
 
+SurelyApart::SurelyApart(const ContactShape& shape, double margin_m) {
+  constexpr double kSpare = 1 + 1e-9;
+  if (const auto* plane = std::get_if<HalfSpaceShape>(&shape)) {
+    kind_ = Kind::Plane;
+    normal_or_centre_ = plane->normal;
+    offset_m_ = plane->offset_m;
+    limit_ = margin_m * plane->normal.norm() * kSpare;
+  } else if (!std::holds_alternative<ConvexSupportShape>(shape)) {
+    double radius_m = 0;
+    if (!boundingSphere(shape, normal_or_centre_, radius_m)) return;
+    kind_ = Kind::Ball;
+    const double reach_m = (radius_m + 2 * margin_m) * kSpare;
+    limit_ = reach_m * reach_m;
+  }
+}
+
 ConvexPoints::ConvexPoints(std::vector<Eigen::Vector3d> points_m) : points_m_(std::move(points_m)) {
   if (points_m_.empty()) throw InputError("convex shape: no points");
   for (const auto& p : points_m_) {

@@ -87,6 +87,34 @@ struct Penetration {
 bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
                  double margin_m = 0);
 
+/// A cheap test that a point is surely further than a contact margin from an obstacle, so that most
+/// points skip penetration()'s square root and division: beyond a half-space's plane by more than the
+/// margin (the n . x - offset penetration() computes, with 1e-9 to spare), or outside a sphere holding a
+/// primitive (boundingSphere) grown by twice the margin (a box's test reaches sqrt(3) margins out at its
+/// corners). Never sure for a support shape: its bounding radius is its owner's word. A point it passes
+/// still needs the exact test; one it rejects, penetration() would reject too.
+class SurelyApart {
+ public:
+  SurelyApart(const ContactShape& shape, double margin_m);
+  bool operator()(const Eigen::Vector3d& point_m) const {
+    switch (kind_) {
+      case Kind::Plane:
+        return normal_or_centre_.dot(point_m) - offset_m_ > limit_;
+      case Kind::Ball:
+        return (point_m - normal_or_centre_).squaredNorm() > limit_;
+      case Kind::Unsure:
+        break;
+    }
+    return false;
+  }
+
+ private:
+  enum class Kind { Unsure, Plane, Ball };
+  Kind kind_ = Kind::Unsure;
+  Eigen::Vector3d normal_or_centre_{0, 0, 0};
+  double offset_m_ = 0, limit_ = 0;
+};
+
 /// Narrows the segment `outside_m`-`inside_m` (one end outside `shape`, the other inside) by halving it
 /// `bisections` times: both ends move toward where the segment crosses the surface, each keeping its side.
 void bisectSurface(const ContactShape& shape, Eigen::Vector3d& outside_m, Eigen::Vector3d& inside_m,

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace deform;
@@ -179,4 +180,58 @@ TEST_CASE("a post's swept cylinder: exact push-out, and its support points lie o
     for (const Eigen::Vector3d& q : outline) furthest = std::max(furthest, direction.dot(q));
     CHECK(direction.dot(support) >= furthest - 1e-12);
   }
+}
+
+TEST_CASE("a point the cheap test calls apart is never within the margin, and most far points are",
+          "[dynamics]") {
+  const double margin_m = 0.01;
+  const BoxShape box{{0.3, -0.2, 0.1},
+                     Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix(),
+                     {0.4, 0.2, 0.3}};
+  const std::vector<ContactShape> shapes = {
+      HalfSpaceShape{{0.3, -1.2, 2.0}, 0.4},  // normal not unit
+      SphereShape{{0.1, 0.2, -0.3}, 0.35},
+      box,
+      CapsuleShape{{0, 0, -0.5}, {0.2, 0.1, 0.6}, 0.08},
+      CylinderShape{{0.1, 0, -1}, {0.1, 0, 1}, 0.08, {0.3, 0.1, 0}},
+  };
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    INFO("shape " << k);
+    const SurelyApart apart(shapes[k], margin_m);
+    Penetration p;
+    int far = 0, called_apart = 0, near_edge = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+      const Eigen::Vector3d x(u(random), u(random), u(random));
+      const bool within = penetration(shapes[k], x, p, margin_m);
+      if (apart(x)) {
+        ++called_apart;
+        REQUIRE_FALSE(within);
+      }
+      if (within) {
+        // Pushed out along the contact normal to just inside the margin, and to just beyond it.
+        const Eigen::Vector3d normal = p.normal;
+        const double depth_m = p.depth_m;
+        const Eigen::Vector3d just_within = x + (depth_m + 0.999 * margin_m) * normal;
+        if (penetration(shapes[k], just_within, p, margin_m)) REQUIRE_FALSE(apart(just_within));
+        near_edge += apart(x + (depth_m + 1.0001 * margin_m) * normal);
+      } else {
+        ++far;
+      }
+    }
+    // Useful: it rejects at least half the points outside (a plane's far side, and the space outside a
+    // primitive's sphere).
+    CHECK(called_apart > far / 2);
+    if (k == 0) CHECK(near_edge > 0);  // the plane's test is tight
+  }
+  // A box's corner: its test reaches out along every axis at once, sqrt(3) margins along the diagonal.
+  const Eigen::Vector3d corner =
+      box.centre_m + box.axes * (box.half_extents_m + 0.9 * margin_m * Eigen::Vector3d::Ones());
+  Penetration p;
+  CHECK(penetration(box, corner, p, margin_m));
+  CHECK_FALSE(SurelyApart(box, margin_m)(corner));
+  // A support shape is never called apart (its bounding radius is not checked).
+  const ConvexPoints hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  CHECK_FALSE(SurelyApart(hull.shape(), margin_m)({10, 10, 10}));
 }
