@@ -120,7 +120,8 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
       const auto [begin, end] = halfOf(n, half);
       for (std::size_t i = begin; i < end; ++i) {
         const double reach = settings.max_deviation_m[i] - kNear_m;
-        if (reach <= 0 || deviation(i).squaredNorm() > reach * reach)
+        // (Written so that a point whose deviation is not a number is listed, as the pass would take it.)
+        if (reach <= 0 || !(deviation(i).squaredNorm() <= reach * reach))
           near.push_back(static_cast<uint32_t>(i));
       }
     });
