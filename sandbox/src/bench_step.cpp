@@ -105,6 +105,7 @@ void runBenchStep(const BenchStepFlags& f) {
   r["wall_us_per_step"] = median_wall_us;
   r["ns_per_constraint_iteration"] = ns_per;
   r["max_deviation_m"] = cost.max_deviation_m;
+  r["points_at_cap"] = cost.points_at_cap;
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(cost.state_hash));
   r["state_hash"] = hash;
@@ -133,6 +134,8 @@ void runBenchStep(const BenchStepFlags& f) {
       "(%s, %u thread%s, %zu steps); state hash %s\n",
       median_us, median_wall_us, ns_per, f.threads > 1 ? "wall time" : "CPU time", f.threads,
       f.threads > 1 ? "s" : "", f.steps, hash);
+  std::printf("  at the end: largest deviation from rest %.3f m, %u of %zu points within 1 mm of their cap\n",
+              cost.max_deviation_m, cost.points_at_cap, settings->pointCount());
   if (r.contains("peer")) {
     const auto& peer = r["peer"];
     std::printf(

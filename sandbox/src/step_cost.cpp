@@ -60,6 +60,9 @@ StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& sett
       (options.threads > 1 ? cost.wall_us_per_step : cost.us_per_step) * 1e3 /
       (static_cast<double>(settings->constraintCount()) * options.substeps * options.iterations);
   cost.max_deviation_m = deform::maxDeviation(*settings, body.state());
+  for (std::size_t i = 0; i < settings->pointCount(); ++i)
+    cost.points_at_cap += (body.state().positions_m[i] - settings->rest_positions_m[i]).norm() >=
+                          settings->max_deviation_m[i] - 1e-3;
   cost.state_hash = deform::hashState(body.state());
   return cost;
 }

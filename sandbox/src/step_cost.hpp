@@ -14,7 +14,10 @@ struct StepCost {
   double ns_per_constraint_iteration = 0;
   uint32_t contact_points = 0;  ///< points against the wall in a substep
   double max_deviation_m = 0;   ///< at the end [m]
-  uint64_t state_hash = 0;      ///< deform::hashState of the body at the end
+  /// Points within 1 mm of their visual-constraint cap at the end: a body that sags onto its caps is
+  /// measured in that state, which is not what a crash's body does.
+  uint32_t points_at_cap = 0;
+  uint64_t state_hash = 0;  ///< deform::hashState of the body at the end
 };
 
 struct StepCostOptions {
