@@ -178,13 +178,21 @@ SurelyApart::SurelyApart(const ContactShape& shape, double margin_m) {
     normal_or_centre_ = plane->normal;
     offset_m_ = plane->offset_m;
     limit_ = margin_m * plane->normal.norm() * kSpare;
-  } else if (!std::holds_alternative<ConvexSupportShape>(shape)) {
-    double radius_m = 0;
-    if (!boundingSphere(shape, normal_or_centre_, radius_m)) return;
-    kind_ = Kind::Ball;
-    const double reach_m = (radius_m + 2 * margin_m) * kSpare;
-    limit_ = reach_m * reach_m;
+    return;
   }
+  if (std::holds_alternative<ConvexSupportShape>(shape)) return;
+  // A box's test measures along its axes (axes^T (x - c)): with axes that are not orthonormal it holds
+  // points far outside its circumsphere (sheared axes), and with axes a float rotation left 4e-8 off unit
+  // length, points a hair outside it. The first are never called apart; the second get 1e-5 to spare.
+  if (const auto* box = std::get_if<BoxShape>(&shape);
+      box &&
+      !((box->axes.transpose() * box->axes - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-6))
+    return;
+  double radius_m = 0;
+  if (!boundingSphere(shape, normal_or_centre_, radius_m)) return;
+  kind_ = Kind::Ball;
+  const double reach_m = (radius_m + 2 * margin_m) * (1 + 1e-5) + 1e-9;
+  limit_ = reach_m * reach_m;
 }
 
 ConvexPoints::ConvexPoints(std::vector<Eigen::Vector3d> points_m) : points_m_(std::move(points_m)) {

@@ -91,8 +91,9 @@ bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Pene
 /// points skip penetration()'s square root and division: beyond a half-space's plane by more than the
 /// margin (the n . x - offset penetration() computes, with 1e-9 to spare), or outside a sphere holding a
 /// primitive (boundingSphere) grown by twice the margin (a box's test reaches sqrt(3) margins out at its
-/// corners). Never sure for a support shape: its bounding radius is its owner's word. A point it passes
-/// still needs the exact test; one it rejects, penetration() would reject too.
+/// corners), with 1e-5 and 1e-9 m to spare. Never sure for a support shape (its bounding radius is its
+/// owner's word) or a box whose axes are not orthonormal within 1e-6. A point it passes still needs the
+/// exact test; one it rejects, penetration() would reject too.
 class SurelyApart {
  public:
   SurelyApart(const ContactShape& shape, double margin_m);

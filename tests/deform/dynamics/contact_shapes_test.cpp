@@ -231,6 +231,25 @@ TEST_CASE("a point the cheap test calls apart is never within the margin, and mo
   Penetration p;
   CHECK(penetration(box, corner, p, margin_m));
   CHECK_FALSE(SurelyApart(box, margin_m)(corner));
+  // Axes a float rotation left off unit length by 4e-8, margin 0: a point a hair inside each corner (as
+  // the box's own test measures) is not called apart.
+  BoxShape rounded;
+  rounded.half_extents_m = {1, 1, 1};
+  rounded.axes =
+      Eigen::AngleAxisf(0.7f, Eigen::Vector3f(1, 2, 3).normalized()).toRotationMatrix().cast<double>();
+  const Eigen::Matrix3d to_frame = rounded.axes.transpose().inverse();
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d local((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
+    const Eigen::Vector3d x = to_frame * (local * (1 - 1e-12));
+    REQUIRE(penetration(rounded, x, p, 0.0));
+    CHECK_FALSE(SurelyApart(rounded, 0.0)(x));
+  }
+  // Sheared axes hold points far outside the circumsphere: such a box is never called apart.
+  BoxShape sheared;
+  sheared.half_extents_m = {0.5, 0.5, 0.5};
+  sheared.axes.col(1) = Eigen::Vector3d(std::cos(0.1), std::sin(0.1), 0);
+  REQUIRE(penetration(sheared, {0, 4, 0}, p, margin_m));
+  CHECK_FALSE(SurelyApart(sheared, margin_m)({0, 4, 0}));
   // A support shape is never called apart (its bounding radius is not checked).
   const ConvexPoints hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   CHECK_FALSE(SurelyApart(hull.shape(), margin_m)({10, 10, 10}));
