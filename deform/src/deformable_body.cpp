@@ -368,8 +368,9 @@ void DeformableBody::beginSubstep(uint32_t k) {
   report.contact_points += findContacts(placed_, inputs, h);
 
   // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
-  // Each half clears the multipliers its sweep writes (those across the cut with half 0), so on two
-  // threads they are in the cache of the thread that uses them.
+  // Each half clears the edges' and bends' multipliers its sweep writes (those across the cut with half
+  // 0), so on two threads they are in the cache of the thread that uses them; the columns' (or spokes')
+  // by index, which is near the sweep's halves (BodySettings::column_order).
   forEachHalf(params_.threads, [&](int half) {
     const auto clear = [half](auto& lambda, const std::array<uint32_t, 2>& half_end) {
       using Value = typename std::decay_t<decltype(lambda)>::value_type;
