@@ -206,8 +206,9 @@ __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t
 }
 
 template <bool kLimited>
-__attribute__((target("avx2"))) void spokesAvx2(const SpokeSweep& s, std::size_t begin, std::size_t end,
+__attribute__((target("avx2"))) void spokesAvx2(const SpokeSweep& shared, std::size_t begin, std::size_t end,
                                                 ColumnReaction& out) {
+  const SpokeSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
   std::size_t j = begin;
   for (; j + 4 <= end; j += 4) spokesFour<kLimited>(s, j, out);
   for (; j < end; ++j) spokeOne<kLimited>(s, j, out);
@@ -245,8 +246,9 @@ __attribute__((target("avx2"))) std::size_t notSurelyElasticAvx2(
 }
 
 template <bool kLimited>
-__attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& s, std::size_t begin, std::size_t end,
+__attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& shared, std::size_t begin, std::size_t end,
                                                ColumnReaction& out) {
+  const ColumnSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
   std::size_t j = begin;
   for (; j + 4 <= end; j += 4) sweepFour<kLimited>(s, j, out);
   for (; j < end; ++j) sweepOne<kLimited>(s, j, out);

@@ -122,8 +122,10 @@ __attribute__((target("avx2"))) void predictFour(const Prediction& p, std::size_
 }
 
 template <bool kInertial>
-__attribute__((target("avx2"))) void predictAvx2(const Prediction& p, std::size_t begin, std::size_t end,
+__attribute__((target("avx2"))) void predictAvx2(const Prediction& shared, std::size_t begin, std::size_t end,
                                                  PredictionSums& sum) {
+  // A local copy: the stores through its pointers then cannot alias its fields, which stay in registers.
+  const Prediction p = shared;
   std::size_t i = begin;
   for (; i + 4 <= end; i += 4) predictFour<kInertial>(p, i, sum);
   for (; i < end; ++i) predictOne(p, i, sum);

@@ -121,7 +121,9 @@ __attribute__((target("avx2"))) inline void store(const DistanceSweep& s, std::s
 }
 
 template <bool kLimited>
-__attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& s, std::size_t begin, std::size_t end) {
+__attribute__((target("avx2"))) void sweepAvx2(const DistanceSweep& shared, std::size_t begin,
+                                               std::size_t end) {
+  const DistanceSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
   std::size_t k = begin;
   while (k < end) {
     if (k + 8 <= end && s.disjoint[k] == kDisjointEight) {
