@@ -109,32 +109,29 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
   constexpr double kNear_m = 1e-3, kRounding_m = 1e-9;
   for (int pass = 0; pass < kMostPasses; ++pass) {
     const Eigen::Vector3d core_before = core;
-    if (!params_.wide_sweep) {
-      for (std::size_t i = 0; i < n; ++i) project(i);
-      if ((core - core_before).squaredNorm() <= 1e-24) break;
-      continue;
+    const auto moved_far = [&] { return (core - core_before).norm() >= kNear_m - kRounding_m; };
+    std::size_t next = 0;  // from here on every point is checked
+    if (params_.wide_sweep) {
+      forEachHalf(params_.threads, [&](int half) {
+        std::vector<uint32_t>& near = near_cap_of_half_[half];
+        near.clear();
+        const auto [begin, end] = halfOf(n, half);
+        for (std::size_t i = begin; i < end; ++i) {
+          const double reach = settings.max_deviation_m[i] - kNear_m;
+          // (Written so that a point whose deviation is not a number is listed, as the pass would take it.)
+          if (reach <= 0 || !(deviation(i).squaredNorm() <= reach * reach))
+            near.push_back(static_cast<uint32_t>(i));
+        }
+      });
+      for (const auto& near : near_cap_of_half_)
+        for (const uint32_t i : near) {
+          if (moved_far()) break;
+          project(i);
+          next = i + 1;
+        }
+      if (!moved_far()) next = n;  // every point not listed is surely inside its cap
     }
-    forEachHalf(params_.threads, [&](int half) {
-      std::vector<uint32_t>& near = near_cap_of_half_[half];
-      near.clear();
-      const auto [begin, end] = halfOf(n, half);
-      for (std::size_t i = begin; i < end; ++i) {
-        const double reach = settings.max_deviation_m[i] - kNear_m;
-        // (Written so that a point whose deviation is not a number is listed, as the pass would take it.)
-        if (reach <= 0 || !(deviation(i).squaredNorm() <= reach * reach))
-          near.push_back(static_cast<uint32_t>(i));
-      }
-    });
-    std::size_t next = 0;  // the first point not yet projected in this pass
-    for (const auto& near : near_cap_of_half_) {
-      for (const uint32_t i : near) {
-        if ((core - core_before).norm() >= kNear_m - kRounding_m) break;
-        project(i);
-        next = i + 1;
-      }
-    }
-    if ((core - core_before).norm() >= kNear_m - kRounding_m)
-      for (std::size_t i = next; i < n; ++i) project(i);
+    for (std::size_t i = next; i < n; ++i) project(i);
     if ((core - core_before).squaredNorm() <= 1e-24) break;  // under 1e-12 m
   }
 }

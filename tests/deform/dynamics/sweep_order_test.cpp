@@ -265,6 +265,7 @@ TEST_CASE("the visual constraint's near list gives the one-by-one bits, on one t
       REQUIRE(ra.core_impulse_Ns == rb.core_impulse_Ns);
       REQUIRE(ra.core_impulse_Ns == rc.core_impulse_Ns);
       REQUIRE(ra.contact_impulse_Ns == rb.contact_impulse_Ns);
+      REQUIRE(ra.contact_impulse_Ns == rc.contact_impulse_Ns);
     }
     // The caps held: some point sits at its cap, none beyond it.
     double farthest_m = 0;
