@@ -8,6 +8,7 @@
 #include <map>
 
 #include "nearest_points.hpp"
+#include "triangle_distance.hpp"
 
 namespace deform {
 
@@ -84,6 +85,31 @@ ControlMeshStats controlMeshStats(const ControlMesh& mesh) {
     }
   }
   return stats;
+}
+
+double controlSurfaceShortfall_m(const ControlMesh& mesh, const std::vector<Eigen::Vector3d>& points) {
+  double shortfall_m = 0;
+  for (const Eigen::Vector3d& p : points) {
+    // Inside a closed convex surface every face plane has the point behind it; outside, the distance is
+    // to the nearest triangle.
+    bool outside = false;
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3d a = mesh.points_m[t[0]], b = mesh.points_m[t[1]], c = mesh.points_m[t[2]];
+      if ((b - a).cross(c - a).dot(p - a) > 0) {
+        outside = true;
+        break;
+      }
+    }
+    if (!outside) continue;
+    double nearest2 = std::numeric_limits<double>::infinity();
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3d a = mesh.points_m[t[0]], b = mesh.points_m[t[1]], c = mesh.points_m[t[2]];
+      const Eigen::Vector3d w = detail::nearestOnTriangle(p, a, b, c);  // barycentric
+      nearest2 = std::min(nearest2, (p - (w[0] * a + w[1] * b + w[2] * c)).squaredNorm());
+    }
+    shortfall_m = std::max(shortfall_m, std::sqrt(nearest2));
+  }
+  return shortfall_m;
 }
 
 std::vector<uint32_t> triangleNeighbours(const std::vector<std::array<uint32_t, 3>>& triangles) {

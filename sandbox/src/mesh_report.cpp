@@ -83,7 +83,14 @@ nlohmann::ordered_json meshReport(const deform::VehicleModel& model, const MeshR
   report["shortest_edge_m"] = stats.shortest_edge_m;
   report["even_gap_m"] = std::sqrt(stats.surface_area_m2 / static_cast<double>(control.points_m.size()));
   report["mirror_symmetric"] = !control.mirror_of.empty();
-  report["hull_volume_m3"] = control.volume_m3;
+  // The hull's own vertices, against the surface the control points span.
+  const deform::ControlMesh hull = deform::convexHull(points, model.source.c_str());
+  report["hull_shortfall_m"] = deform::controlSurfaceShortfall_m(
+      control, std::vector<Eigen::Vector3d>(
+                   hull.points_m.begin(),
+                   hull.points_m.begin() + static_cast<std::ptrdiff_t>(hull.hull_vertex_count)));
+  report["control_volume_m3"] = deform::enclosedVolume_m3(control.points_m, control.triangles);
+  report["hull_volume_m3"] = hull.volume_m3;
   report["centre_of_mass_m"] = vec(control.centre_of_mass_m);
   report["mass"] = {{"vehicle_kg", options.vehicle_mass_kg},
                     {"core_kg", masses.core_mass_kg},
@@ -135,6 +142,10 @@ std::string formatMeshReport(const nlohmann::ordered_json& r) {
                 "spread [m]         largest gap %.3f (even spacing %.3f), edges %.3f .. %.3f\n",
                 r["largest_gap_m"].get<double>(), r["even_gap_m"].get<double>(),
                 r["shortest_edge_m"].get<double>(), r["longest_edge_m"].get<double>());
+  out << line;
+  std::snprintf(line, sizeof line,
+                "fit                %.3f m^3 enclosed, hull vertices at most %.3f m outside\n",
+                r["control_volume_m3"].get<double>(), r["hull_shortfall_m"].get<double>());
   out << line;
   const auto& m = r["mass"];
   std::snprintf(line, sizeof line,

@@ -7,6 +7,7 @@
 
 #include <deform/control_mesh.hpp>
 #include <vehicle/vehicle_settings.hpp>
+#include <vehicle/world.hpp>
 
 #include <map>
 
@@ -39,7 +40,7 @@ std::vector<FirstContact> rehearseFirstContacts(
       std::vector<Eigen::Vector3d> points;
       for (const Eigen::Vector3f& p : model.body.positions_m) points.push_back(p.cast<double>());
       const std::string source = model.source.empty() ? "vehicle model" : model.source;
-      hull = deform::buildControlMesh(points, settings.collision_points, source.c_str());
+      hull = vehicle::collisionHull(points, settings.collision_points, source.c_str());
     }
     ids.push_back(
         world.addCar(hull, vehicle::wheelsFromModel(settings, model), settings, build::carStart(v)));

@@ -134,6 +134,31 @@ TEST_CASE("refined control points spread evenly: the largest gap shrinks as poin
   }
 }
 
+TEST_CASE("the shortfall is the distance of a point outside the control surface, and shrinks with N",
+          "[control_mesh]") {
+  // A box's 8 corners are its whole hull: nothing falls short of it, and a point 0.3 m off the middle of
+  // its front face, or 0.3 m out past a corner along the diagonal, is that far outside.
+  std::vector<Eigen::Vector3d> box;
+  for (int i = 0; i < 8; ++i) box.emplace_back(i & 1 ? 2.4 : -2.4, i & 2 ? 0.9 : -0.9, i & 4 ? 1.4 : 0.0);
+  const ControlMesh hull = deform::buildControlMesh(box, 8);
+  CHECK(deform::controlSurfaceShortfall_m(hull, box) == Approx(0).margin(1e-12));
+  CHECK(deform::controlSurfaceShortfall_m(hull, {{2.7, 0.1, 0.7}, {0, 0, 0.7}}) ==
+        Approx(0.3).epsilon(1e-12));
+  const Eigen::Vector3d corner(2.4, 0.9, 1.4), out = corner + 0.3 * Eigen::Vector3d(1, 1, 1).normalized();
+  CHECK(deform::controlSurfaceShortfall_m(hull, {out}) == Approx(0.3).epsilon(1e-12));
+  // A rounded body: its coarse control surfaces cut its curves, less the more points they have.
+  const auto sphere = test_points::sphere(3000, {2.4, 0.9, 0.7});
+  double previous_m = 1e9;
+  for (std::size_t target : {30u, 120u, 500u}) {
+    CAPTURE(target);
+    const double shortfall_m =
+        deform::controlSurfaceShortfall_m(deform::buildControlMesh(sphere, target), sphere);
+    CHECK(shortfall_m > 0);
+    CHECK(shortfall_m < previous_m);
+    previous_m = shortfall_m;
+  }
+}
+
 TEST_CASE("control mesh is deterministic", "[control_mesh]") {
   const auto points = test_points::cloud(3000, 7);
   for (auto method : {deform::LodMethod::Even, deform::LodMethod::Simplify}) {

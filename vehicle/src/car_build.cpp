@@ -77,7 +77,7 @@ std::shared_ptr<const CarBuild> buildCar(const deform::VehicleModel& model, cons
   const std::vector<Eigen::Vector3d> points = bodyPoints(model);
   const std::string source = model.source.empty() ? "vehicle model" : model.source;
   build->control_mesh = deform::buildControlMesh(points, deformation.control_points, source.c_str());
-  build->collision_hull = deform::buildControlMesh(points, car.collision_points, source.c_str());
+  build->collision_hull = collisionHull(points, car.collision_points, source.c_str());
   // The shell's share of the car's mass, spread over the points by the tetrahedral fan (its shape only:
   // the points hold shell_mass_fraction of the car); the chassis keeps the rest.
   build->masses = deform::distributeMass(build->control_mesh, car.mass_kg);

@@ -370,8 +370,7 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
   if (crush && dc.hull_dirty && dc.quiet_steps >= quiet_needed && dc.touching.empty() &&
       dc.partners.empty() && report.max_speed_mps < 0.05) {
     const std::size_t n = std::max<std::size_t>(4, car.settings().collision_points);
-    const deform::ControlMesh dented =
-        deform::buildControlMesh(dc.body->state().positions_m, n, "dented body");
+    const deform::ControlMesh dented = collisionHull(dc.body->state().positions_m, n, "dented body");
     // A body crushed through its own centre of mass (a small car, a deep dent) keeps its old hull: ODE's
     // convex geom needs the centre inside (its planes' offsets positive), or it warns and mis-collides.
     if (enclosesWithMargin(dented, dc.body_settings->core_m, 0.01)) {

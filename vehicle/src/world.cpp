@@ -343,14 +343,18 @@ const WorldSettings& World::settings() const {
   return impl_->settings;
 }
 
+deform::ControlMesh collisionHull(const std::vector<Eigen::Vector3d>& points, std::size_t count,
+                                  const char* source) {
+  return deform::buildControlMesh(points, count, source);
+}
+
 CarId World::addCar(const deform::VehicleModel& model, const VehicleSettings& settings,
                     const CarStart& start) {
   std::vector<Eigen::Vector3d> points;
   points.reserve(model.body.positions_m.size());
   for (const auto& p : model.body.positions_m) points.push_back(p.cast<double>());
   const std::string source = model.source.empty() ? "vehicle model" : model.source;
-  const deform::ControlMesh hull =
-      deform::buildControlMesh(points, settings.collision_points, source.c_str());
+  const deform::ControlMesh hull = collisionHull(points, settings.collision_points, source.c_str());
   return impl_->addCar(hull, settings, wheelsFromModel(settings, model), start);
 }
 

@@ -85,6 +85,11 @@ ControlMesh triangulateOnConvexSurface(const std::vector<Eigen::Vector3d>& point
 /// Gaps, edge lengths and area of `mesh`.
 ControlMeshStats controlMeshStats(const ControlMesh& mesh);
 
+/// How far the control surface falls short of the body it stands for: the largest distance from one of
+/// `points` (the body's hull vertices, say) outside the closed convex surface `mesh` to it [m]; 0 when
+/// the surface holds them all.
+double controlSurfaceShortfall_m(const ControlMesh& mesh, const std::vector<Eigen::Vector3d>& points);
+
 /// Volume enclosed by the closed, outward-wound surface `triangles` over `points_m` (a fan of tetrahedra
 /// from the points' mean, the divergence theorem) [m^3]; with the rest points, ControlMesh::volume_m3.
 double enclosedVolume_m3(const std::vector<Eigen::Vector3d>& points_m,

@@ -97,6 +97,11 @@ struct CarStart {
   bool on_ground = true;
 };
 
+/// The chassis's rigid collision hull: `points`' convex hull at `count` points
+/// (VehicleSettings::collision_points), the one definition every car and scene builds it by.
+deform::ControlMesh collisionHull(const std::vector<Eigen::Vector3d>& points, std::size_t count,
+                                  const char* source);
+
 /// Where the last World::step's time went [ms].
 struct WorldTimings {
   double tyres_ms = 0;    ///< every car's wheel raycasts, suspension and tyre forces [ms]
@@ -114,7 +119,7 @@ class World {
 
   const WorldSettings& settings() const;
 
-  /// A car whose chassis is `model`'s body: collision hull buildControlMesh(vertices,
+  /// A car whose chassis is `model`'s body: collision hull collisionHull(vertices,
   /// settings.collision_points), mass settings.mass_kg over the solid hull; wheels from settings, the
   /// model's wheels or its bounding box (wheelsFromModel).
   CarId addCar(const deform::VehicleModel& model, const VehicleSettings& settings = {},
