@@ -223,6 +223,8 @@ VehicleConfig parseVehicle(JsonObject& object, std::size_t index, const std::str
   v.mesh_forward = axisKey(object, "mesh_forward");
   v.mesh = resolveMeshPath(object.string("mesh", std::nullopt), object, "mesh", base_dir);
   v.mass_kg = object.number("mass_kg", std::nullopt, 0.01, 100000);
+  v.collision_points = static_cast<std::size_t>(
+      object.integer("collision_points", static_cast<long long>(v.collision_points), 8, 1000));
   v.wheels_in_body = object.choice("wheels", std::string("model"), {"model", "in_body"}) == "in_body";
   const bool visual = object.choice("coupling", std::nullopt, {"crush", "visual"}) == "visual";
   const vehicle::Coupling coupling = visual ? vehicle::Coupling::Visual : vehicle::Coupling::Crush;

@@ -88,6 +88,7 @@ std::vector<std::shared_ptr<const deform::VehicleModel>> loadModels(const SceneC
 vehicle::VehicleSettings carSettings(const VehicleConfig& v, const deform::VehicleModel& model,
                                      const std::string& where) {
   vehicle::VehicleSettings base;
+  base.collision_points = v.collision_points;
   base.wheels = vehicle::wheelsFromModel(base, model);
   if (v.wheels_in_body && model.wheels.empty()) {
     // Modelled wheels are part of the body: tyres touching down at the mesh's bottom (plus 1 %).

@@ -6,6 +6,7 @@
 
 #include <scenes/deformation_budget.hpp>
 #include <scenes/scene_file.hpp>
+#include <scenes/scene_run.hpp>
 
 #include <deform/error.hpp>
 #include <vehicle/material_map.hpp>
@@ -391,4 +392,20 @@ TEST_CASE("vehicle.deformation.skin_method takes auto, idw, mls or spline and re
   doc["vehicle"]["deformation"]["control_points"] = 300;
   CHECK_THAT(refusal(doc),
              Catch::Contains("vehicle.deformation.skin_method: spline through every control point"));
+}
+
+TEST_CASE("collision_points sizes the chassis's rigid hull, within [8, 1000]", "[scenes]") {
+  json doc = minimalScene();
+  CHECK(scenes::parseScene(doc, "test.json").vehicles[0].collision_points == 64);
+  doc["vehicle"]["collision_points"] = 7;
+  CHECK_THAT(refusal(doc),
+             Catch::Contains("test.json: vehicle.collision_points: must be in [8, 1000] (got 7)"));
+  doc["vehicle"]["collision_points"] = 1.5;
+  CHECK_THAT(refusal(doc), Catch::Contains("test.json: vehicle.collision_points"));
+  for (long long points : {24, 200}) {
+    doc["vehicle"]["collision_points"] = points;
+    scenes::SceneRun run(scenes::parseScene(doc, "test.json"));
+    const auto& hull = run.simulation().world().car(run.carId(0)).collisionHull();
+    CHECK(hull.points_m.size() == static_cast<std::size_t>(points));
+  }
 }

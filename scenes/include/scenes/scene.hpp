@@ -69,6 +69,8 @@ struct VehicleConfig {
   /// the tyres' bottoms 1 % of the height above its bottom (a mesh whose wheels are part of the body).
   bool wheels_in_body = false;
   double mass_kg = 1500;  ///< whole vehicle [kg]
+  /// Points of the chassis's rigid collision hull (vehicle::VehicleSettings::collision_points).
+  std::size_t collision_points = vehicle::VehicleSettings{}.collision_points;
   StartConfig start;
   DeformationConfig deformation;  ///< knobs and coupling (crush or visual)
   DriveScript drive;
