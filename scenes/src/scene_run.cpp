@@ -1,5 +1,7 @@
 // Playing a scene: world and cars from the scene, drive scripts, metrics, timeline.
+#include <scenes/car_skin.hpp>
 #include <scenes/scene_run.hpp>
+#include <scenes/surface_crush.hpp>
 #include <vehicle/ccd_support.hpp>
 #include "scene_world.hpp"
 
@@ -275,16 +277,33 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
 
 }  // namespace
 
+SurfaceCrush SceneRun::surfaceCrush(std::size_t car, CarSkinBuilds& skins) const {
+  const vehicle::CarId id = cars_[car].id;
+  const vehicle::CrashMetrics m = simulation_->metrics(id);
+  if (!m.impacted) return {};
+  CarSkin skin(skins.get(cars_[car].model->body, simulation_->controlRestPoints(id),
+                         simulation_->deformationSettings(id)));
+  skin.update(simulation_->controlDisplacements(id));
+  return scenes::surfaceCrush(cars_[car].model->body, skin.positions(), m.impact_direction_vehicle);
+}
+
 nlohmann::json SceneRun::summary() const {
   nlohmann::json out;
   out["scene"] = scene_.name;
   out["source"] = scene_.source;
   bool any_diverged = false;
   nlohmann::json cars = nlohmann::json::array();
+  CarSkinBuilds skins;  // one skin build per body mesh, control mesh and skin settings
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     const vehicle::CrashMetrics m = simulation_->metrics(cars_[i].id);
     any_diverged = any_diverged || m.diverged;
     nlohmann::json car = metricsJson(m);
+    // The same crush measured on the car's own surface: the render mesh as the car's skin moves it.
+    const SurfaceCrush surface = surfaceCrush(i, skins);
+    car["surface_residual_crush_m"] = surface.residual_crush_m;
+    car["surface_max_residual_crush_m"] = surface.max_residual_crush_m;
+    car["surface_crush_profile_m"] = profileJson(surface.profile_m);
+    car["surface_crush_height_m"] = surface.height_m;
     car["name"] = scene_.vehicles[i].name;
     const vehicle::Car& chassis = simulation_->world().car(cars_[i].id);
     const Eigen::Vector3d p = chassis.vehiclePose().position_m;

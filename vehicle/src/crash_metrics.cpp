@@ -14,10 +14,11 @@ namespace {
 
 /// Furthest intersection along `d` of the line base + s d with the triangles (Moeller and Trumbore
 /// 1997, "Fast, Minimum Storage Ray/Triangle Intersection"); none when the line misses them all.
-std::optional<double> furthestHit(const deform::ControlMesh& mesh, const std::vector<Eigen::Vector3d>& points,
-                                  const Eigen::Vector3d& base, const Eigen::Vector3d& d) {
+std::optional<double> furthestHit(const std::vector<std::array<uint32_t, 3>>& triangles,
+                                  const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& base,
+                                  const Eigen::Vector3d& d) {
   std::optional<double> best;
-  for (const auto& t : mesh.triangles) {
+  for (const auto& t : triangles) {
     const Eigen::Vector3d& p0 = points[t[0]];
     const Eigen::Vector3d e1 = points[t[1]] - p0, e2 = points[t[2]] - p0;
     const Eigen::Vector3d p = d.cross(e2);
@@ -41,21 +42,28 @@ std::optional<double> furthestHit(const deform::ControlMesh& mesh, const std::ve
 std::vector<double> crushProfile(const deform::ControlMesh& mesh,
                                  const std::vector<Eigen::Vector3d>& points_m,
                                  const Eigen::Vector3d& direction, double z_m, int stations) {
+  return crushProfile(mesh.triangles, mesh.points_m, points_m, direction, z_m, stations);
+}
+
+std::vector<double> crushProfile(const std::vector<std::array<uint32_t, 3>>& triangles,
+                                 const std::vector<Eigen::Vector3d>& rest_m,
+                                 const std::vector<Eigen::Vector3d>& now_m, const Eigen::Vector3d& direction,
+                                 double z_m, int stations) {
   std::vector<double> out;
   Eigen::Vector3d d(direction.x(), direction.y(), 0);
-  if (d.norm() < 1e-12 || stations < 1 || points_m.size() != mesh.points_m.size()) return out;
+  if (d.norm() < 1e-12 || stations < 1 || now_m.size() != rest_m.size()) return out;
   d.normalize();
   const Eigen::Vector3d lateral = Eigen::Vector3d::UnitZ().cross(d);
   double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (const auto& p : mesh.points_m) {
+  for (const auto& p : rest_m) {
     low = std::min(low, lateral.dot(p));
     high = std::max(high, lateral.dot(p));
   }
   for (int j = 0; j < stations; ++j) {
     const double y = low + (j + 0.5) * (high - low) / stations;
     const Eigen::Vector3d base = y * lateral + Eigen::Vector3d(0, 0, z_m);
-    const auto rest = furthestHit(mesh, mesh.points_m, base, d);
-    const auto now = furthestHit(mesh, points_m, base, d);
+    const auto rest = furthestHit(triangles, rest_m, base, d);
+    const auto now = furthestHit(triangles, now_m, base, d);
     // A station whose line passes above or below the surface (a coarse hull's chamfered end) has no
     // value: NaN keeps the others at their stations.
     out.push_back(rest && now ? std::max(0.0, *rest - *now) : std::numeric_limits<double>::quiet_NaN());

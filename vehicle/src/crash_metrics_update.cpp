@@ -175,6 +175,8 @@ CrashMetrics Simulation::metrics(CarId car) const {
                  -(dc.body->state().positions_m[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
   out.crush_profile_m = crush;
   out.crush_height_m = rest[lead].z();
+  if (dc.impact_direction_vehicle.norm() > 1e-12)
+    out.impact_direction_vehicle = dc.impact_direction_vehicle.normalized();
   double sum = 0;
   std::size_t hits = 0;
   for (double c : crush) {

@@ -29,6 +29,10 @@ struct ConvergeRow {
   /// surface), and their height [m]: where a level of detail gains or loses crush.
   std::vector<double> crush_profile_m;
   double crush_height_m = 0;
+  /// The same six stations on the car's own surface (its render mesh, moved by its skin): NaN when the
+  /// measurement predates it [m]; and that crush relative to the finest level's, minus one [1].
+  double surface_crush_m = std::nan("");
+  double surface_change_from_finest = 0;
   double change_from_finest = 0;         ///< residual crush relative to the finest level's, minus one [1]
   double volume_change_from_finest = 0;  ///< crushed volume relative to the finest level's, minus one [1]
 };
@@ -47,6 +51,7 @@ ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
   row.plastic_work_J = number("plastic_work_J");
   row.kinetic_initial_J = number("kinetic_initial_J");
   row.deform_ms = number("deform_ms");
+  if (m.contains("surface_residual_crush_m")) row.surface_crush_m = number("surface_residual_crush_m");
   // Written before the profile was measured: none (the tables leave it out).
   const auto profile = m.find("crush_profile_m");
   if (profile != m.end() && profile->is_array()) {
@@ -93,15 +98,17 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
   CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
                 "max_dent_m", "restitution", "plastic_work_J", "kinetic_initial_J", "change_from_finest",
                 "deform_ms", "crushed_volume_m3", "volume_change_from_finest", "crush_height_m",
-                "crush_profile_m"});
+                "crush_profile_m", "surface_residual_crush_m", "surface_change_from_finest"});
   std::ostringstream md;
   md << "Residual crush (six-station average) and crushed volume (the control surface's, at rest less now) "
-        "against the level of detail; each change is against the finest level.\n";
+        "against the level of detail, and the same six stations on the car's own surface (its render mesh "
+        "as the skin moves it, at the height of its most protruding vertex: the same rest shape at every "
+        "level); each change is against the finest level.\n";
   for (const std::string& name : names) {
     md << "\n### " << name << "\n\n| control points | residual crush m | largest m | dynamic crush m "
        << "| deepest dent m | restitution | plastic / impact energy | change from finest | crushed volume L "
-       << "| its change | deform ms |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "| its change | car's surface: crush m | its change | deform ms |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConvergeRow& r : rows) {
       if (r.scene != name) continue;
       csv.addRow({r.scene, std::to_string(r.control_points), CsvTable::number(r.residual_crush_m),
@@ -110,7 +117,8 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                   CsvTable::number(r.plastic_work_J), CsvTable::number(r.kinetic_initial_J),
                   CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms),
                   CsvTable::number(r.crushed_volume_m3), CsvTable::number(r.volume_change_from_finest),
-                  CsvTable::number(r.crush_height_m), profileText(r.crush_profile_m, " ")});
+                  CsvTable::number(r.crush_height_m), profileText(r.crush_profile_m, " "),
+                  CsvTable::number(r.surface_crush_m), CsvTable::number(r.surface_change_from_finest)});
       md << "| " << r.control_points << " | " << CsvTable::fixed(r.residual_crush_m, 3) << " | "
          << CsvTable::fixed(r.max_residual_crush_m, 3) << " | " << CsvTable::fixed(r.max_dynamic_crush_m, 3)
          << " | " << CsvTable::fixed(r.max_dent_m, 3) << " | " << CsvTable::fixed(r.restitution, 3) << " | "
@@ -119,7 +127,13 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
          << " % | " << CsvTable::fixed(1e3 * r.crushed_volume_m3, 1) << " | "
          << (r.volume_change_from_finest >= 0 ? "+" : "")
          << CsvTable::fixed(100 * r.volume_change_from_finest, 1) << " % | "
-         << CsvTable::fixed(r.deform_ms, 0) << " |\n";
+         << (std::isnan(r.surface_crush_m) ? std::string("-") : CsvTable::fixed(r.surface_crush_m, 3))
+         << " | "
+         << (std::isnan(r.surface_crush_m)
+                 ? std::string("-")
+                 : (r.surface_change_from_finest >= 0 ? "+" : "") +
+                       CsvTable::fixed(100 * r.surface_change_from_finest, 1) + " %")
+         << " | " << CsvTable::fixed(r.deform_ms, 0) << " |\n";
     }
     md << profileTable(rows, name);
   }
@@ -143,13 +157,17 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
     for (const ConvergeRow& r : rows)
       if (r.scene == names[k])
         points << r.control_points << "," << r.residual_crush_m << "," << r.max_dent_m << ","
-               << 1e3 * r.crushed_volume_m3 << "\n";
+               << 1e3 * r.crushed_volume_m3 << ","
+               << (std::isnan(r.surface_crush_m) ? std::string("NaN") : std::to_string(r.surface_crush_m))
+               << "\n";
     scenes::writeFileAtomically(data, points.str());
     const std::string colour = colours[k % 4];
     gp << (k ? ", \\\n  " : "") << gnuplotQuoted(data) << " using 1:2 with linespoints lw 2 pt 7 lc rgb '"
-       << colour << "' title " << gnuplotQuoted(names[k] + ": residual crush (6 stations)") << ", \\\n  "
-       << gnuplotQuoted(data) << " using 1:3 with linespoints lw 1 dt 2 pt 6 lc rgb '" << colour << "' title "
-       << gnuplotQuoted(names[k] + ": deepest dent");
+       << colour << "' title " << gnuplotQuoted(names[k] + ": residual crush (6 stations, control surface)")
+       << ", \\\n  " << gnuplotQuoted(data) << " using 1:5 with linespoints lw 2 pt 5 lc rgb '" << colour
+       << "' title " << gnuplotQuoted(names[k] + ": the same on the car's surface (render mesh)")
+       << ", \\\n  " << gnuplotQuoted(data) << " using 1:3 with linespoints lw 1 dt 2 pt 6 lc rgb '" << colour
+       << "' title " << gnuplotQuoted(names[k] + ": deepest dent");
   }
   gp << "\n";
   if (runGnuplot(base + ".gp", gp.str())) std::printf("wrote %s.png\n", base.c_str());
@@ -203,21 +221,24 @@ void writeConvergeReport(const SweepPlan& plan, const std::vector<nlohmann::json
     rows.push_back(rowOf(plan.cases[i], measured[i]));
     if (std::find(names.begin(), names.end(), rows.back().scene) == names.end())
       names.push_back(rows.back().scene);
-    std::printf("%s, %zu points: residual crush %.3f m\n", rows.back().scene.c_str(),
-                rows.back().control_points, rows.back().residual_crush_m);
+    std::printf("%s, %zu points: residual crush %.3f m (the car's surface %.3f m)\n",
+                rows.back().scene.c_str(), rows.back().control_points, rows.back().residual_crush_m,
+                rows.back().surface_crush_m);
   }
   std::fflush(stdout);
   for (const std::string& name : names) {
-    double finest = 0, finest_volume = 0;  // the last (finest) level of the scene
+    double finest = 0, finest_volume = 0, finest_surface = 0;  // the last (finest) level of the scene
     for (const ConvergeRow& r : rows)
       if (r.scene == name) {
         finest = r.residual_crush_m;
         finest_volume = r.crushed_volume_m3;
+        finest_surface = r.surface_crush_m;
       }
     for (ConvergeRow& r : rows) {
       if (r.scene != name) continue;
       r.change_from_finest = finest > 0 ? r.residual_crush_m / finest - 1.0 : 0.0;
       r.volume_change_from_finest = finest_volume > 0 ? r.crushed_volume_m3 / finest_volume - 1.0 : 0.0;
+      r.surface_change_from_finest = finest_surface > 0 ? r.surface_crush_m / finest_surface - 1.0 : 0.0;
     }
   }
   std::filesystem::create_directories(dir);

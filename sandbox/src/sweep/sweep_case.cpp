@@ -29,7 +29,12 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
   scenes::SceneRun run(config);
   run.runToEnd();
   const vehicle::CrashMetrics m = run.simulation().metrics(run.carId(0));
+  scenes::CarSkinBuilds skins;
+  const scenes::SurfaceCrush surface = run.surfaceCrush(0, skins);
   return {{"scene_name", config.name},
+          {"surface_residual_crush_m", surface.residual_crush_m},
+          {"surface_crush_profile_m", scenes::profileJson(surface.profile_m)},
+          {"surface_crush_height_m", surface.height_m},
           {"impact_speed_mps", m.impact_speed_mps},
           {"residual_crush_m", m.residual_crush_m},
           {"max_residual_crush_m", m.max_residual_crush_m},

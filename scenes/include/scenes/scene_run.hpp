@@ -2,9 +2,11 @@
 // Playing a scene, without any rendering: the simulation (World plus deformable cars) built from the
 // scene, stepped at the fixed physics rate with each car's drive script, and what a run reports: the
 // crash metrics of every car, the state hash, stage timings and one timeline row per frame.
+#include <scenes/car_skin.hpp>
 #include <scenes/deformation_budget.hpp>
 #include <scenes/drive_script.hpp>
 #include <scenes/scene.hpp>
+#include <scenes/surface_crush.hpp>
 
 #include <vehicle/simulation.hpp>
 
@@ -71,6 +73,9 @@ class SceneRun {
   vehicle::CarId carId(std::size_t car) const { return cars_[car].id; }
   /// The car's model as loaded (render mesh and wheels, vehicle frame).
   const deform::VehicleModel& model(std::size_t car) const { return *cars_[car].model; }
+  /// The crush of car `car`'s own surface now (scenes::surfaceCrush): its render mesh moved by its skin,
+  /// built through `skins` (cars of one build share it); empty before the car's first impact.
+  SurfaceCrush surfaceCrush(std::size_t car, CarSkinBuilds& skins) const;
   /// Obstacle id in the world of the scene's obstacle `index`.
   vehicle::ObstacleId obstacleId(std::size_t index) const { return obstacle_ids_[index]; }
 

@@ -184,6 +184,9 @@ struct CrashMetrics {
   /// and the height they are measured at [m, vehicle frame]. Empty and 0 before an impact.
   std::vector<double> crush_profile_m;
   double crush_height_m = 0;
+  /// The horizontal unit direction out of the struck end that those stations look along (vehicle
+  /// frame; +x for a frontal impact) [-].
+  Eigen::Vector3d impact_direction_vehicle{1, 0, 0};
   /// Deepest dent: the largest displacement of a control point against the impact direction now [m]
   /// (a pole's narrow dent can fall between the six stations).
   double max_dent_m = 0;
@@ -297,5 +300,13 @@ class Simulation {
 std::vector<double> crushProfile(const deform::ControlMesh& mesh,
                                  const std::vector<Eigen::Vector3d>& points_m,
                                  const Eigen::Vector3d& direction, double z_m, int stations = 6);
+
+/// The same measurement of any closed surface: `triangles` over the points `rest_m` at rest and `now_m`
+/// now (the render mesh's vertices, for the crush of the car's own surface, which unlike the control
+/// surface is the same at every level of detail). The stations span the width of `rest_m`.
+std::vector<double> crushProfile(const std::vector<std::array<uint32_t, 3>>& triangles,
+                                 const std::vector<Eigen::Vector3d>& rest_m,
+                                 const std::vector<Eigen::Vector3d>& now_m, const Eigen::Vector3d& direction,
+                                 double z_m, int stations = 6);
 
 }  // namespace vehicle
