@@ -277,14 +277,16 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
 
 }  // namespace
 
-SurfaceCrush SceneRun::surfaceCrush(std::size_t car, CarSkinBuilds& skins) const {
+SurfaceCrush SceneRun::surfaceCrush(std::size_t car, SurfaceSkins& skins) const {
   const vehicle::CarId id = cars_[car].id;
   const vehicle::CrashMetrics m = simulation_->metrics(id);
   if (!m.impacted) return {};
-  CarSkin skin(skins.get(cars_[car].model->body, simulation_->controlRestPoints(id),
-                         simulation_->deformationSettings(id)));
-  skin.update(simulation_->controlDisplacements(id));
-  return scenes::surfaceCrush(cars_[car].model->body, skin.positions(), m.impact_direction_vehicle);
+  const deform::Mesh& body = cars_[car].model->body;
+  const auto skin = skins.get(body, simulation_->controlRestPoints(id), simulation_->deformationSettings(id));
+  const std::vector<Eigen::Vector3d> displacements = simulation_->controlDisplacements(id);
+  std::vector<Eigen::Vector3f> now(body.positions_m.size());
+  skin->deform(body.positions_m.data(), displacements.data(), now.data(), 0);
+  return scenes::surfaceCrush(body, now, m.impact_direction_vehicle);
 }
 
 nlohmann::json SceneRun::summary() const {
@@ -293,7 +295,7 @@ nlohmann::json SceneRun::summary() const {
   out["source"] = scene_.source;
   bool any_diverged = false;
   nlohmann::json cars = nlohmann::json::array();
-  CarSkinBuilds skins;  // one skin build per body mesh, control mesh and skin settings
+  SurfaceSkins skins;  // one skin per body mesh, control mesh and skin settings
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     const vehicle::CrashMetrics m = simulation_->metrics(cars_[i].id);
     any_diverged = any_diverged || m.diverged;
