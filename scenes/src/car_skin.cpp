@@ -182,13 +182,22 @@ std::size_t CarSkin::update(const std::vector<Eigen::Vector3d>& displacements_m,
   return changed;
 }
 
+std::shared_ptr<const deform::Skin> SkinCache::get(const deform::Mesh& body,
+                                                   const std::vector<Eigen::Vector3d>& control_rest_m,
+                                                   const vehicle::DeformationSettings& settings) {
+  const Key key{&body, &control_rest_m, settings.alpha, settings.k_nearest,
+                static_cast<int>(settings.skin_method)};
+  std::shared_ptr<const deform::Skin>& skin = skins_[key];
+  if (!skin) skin = CarSkin::buildSkin(body, control_rest_m, settings);
+  return skin;
+}
+
 std::shared_ptr<const CarSkin::Build> CarSkinBuilds::get(const deform::Mesh& body,
                                                          const std::vector<Eigen::Vector3d>& control_rest_m,
                                                          const vehicle::DeformationSettings& settings) {
-  const Key key{&body, &control_rest_m, settings.alpha, settings.k_nearest,
-                static_cast<int>(settings.skin_method)};
-  std::shared_ptr<const CarSkin::Build>& build = builds_[key];
-  if (!build) build = CarSkin::share(body, CarSkin::buildSkin(body, control_rest_m, settings));
+  std::shared_ptr<const deform::Skin> skin = skins_.get(body, control_rest_m, settings);
+  std::shared_ptr<const CarSkin::Build>& build = builds_[skin.get()];
+  if (!build) build = CarSkin::share(body, std::move(skin));
   return build;
 }
 

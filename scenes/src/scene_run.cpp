@@ -277,7 +277,7 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
 
 }  // namespace
 
-SurfaceCrush SceneRun::surfaceCrush(std::size_t car, SurfaceSkins& skins) const {
+SurfaceCrush SceneRun::surfaceCrush(std::size_t car, SkinCache& skins) const {
   const vehicle::CarId id = cars_[car].id;
   const vehicle::CrashMetrics m = simulation_->metrics(id);
   if (!m.impacted) return {};
@@ -295,7 +295,7 @@ nlohmann::json SceneRun::summary() const {
   out["source"] = scene_.source;
   bool any_diverged = false;
   nlohmann::json cars = nlohmann::json::array();
-  SurfaceSkins skins;  // one skin per body mesh, control mesh and skin settings
+  SkinCache skins;  // one skin per body mesh, control mesh and skin settings
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     const vehicle::CrashMetrics m = simulation_->metrics(cars_[i].id);
     any_diverged = any_diverged || m.diverged;

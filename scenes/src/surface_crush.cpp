@@ -1,7 +1,5 @@
 #include <scenes/surface_crush.hpp>
 
-#include <scenes/car_skin.hpp>
-
 #include <vehicle/simulation.hpp>
 
 #include <deform/error.hpp>
@@ -38,16 +36,6 @@ SurfaceCrush surfaceCrush(const deform::Mesh& body, const std::vector<Eigen::Vec
   }
   out.residual_crush_m = hits ? sum / static_cast<double>(hits) : 0.0;
   return out;
-}
-
-std::shared_ptr<const deform::Skin> SurfaceSkins::get(const deform::Mesh& body,
-                                                      const std::vector<Eigen::Vector3d>& control_rest_m,
-                                                      const vehicle::DeformationSettings& settings) {
-  const Key key{&body, &control_rest_m, settings.alpha, settings.k_nearest,
-                static_cast<int>(settings.skin_method)};
-  std::shared_ptr<const deform::Skin>& skin = skins_[key];
-  if (!skin) skin = CarSkin::buildSkin(body, control_rest_m, settings);
-  return skin;
 }
 
 }  // namespace scenes

@@ -47,7 +47,7 @@ TEST_CASE("surface crush: the 56 km/h wall crash crushes the car's surface alike
         "wall_crash",
         {scenes::parseOverride("vehicle.deformation.control_points=" + std::to_string(points))}));
     run.runToEnd();
-    scenes::SurfaceSkins skins;
+    scenes::SkinCache skins;
     const scenes::SurfaceCrush surface = run.surfaceCrush(0, skins);
     CHECK(surface.profile_m.size() == 6);
     return surface.residual_crush_m;

@@ -29,7 +29,7 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
   scenes::SceneRun run(config);
   run.runToEnd();
   const vehicle::CrashMetrics m = run.simulation().metrics(run.carId(0));
-  scenes::SurfaceSkins skins;
+  scenes::SkinCache skins;
   const scenes::SurfaceCrush surface = run.surfaceCrush(0, skins);
   return {{"scene_name", config.name},
           {"surface_residual_crush_m", surface.residual_crush_m},

@@ -121,9 +121,21 @@ class CarSkin {
   ProjectionStats last_projection_;
 };
 
-/// The shared builds of a run's cars: one per body mesh, control mesh and skin settings (DESIGN.md
-/// section 8). Keyed by the addresses of the body and of the control points, which stay put for the run
-/// (scenes::SceneRun's models and vehicle::Simulation's control meshes).
+/// The skins (weights alone) of a run's cars: one per body mesh, control mesh and skin settings. Keyed
+/// by the addresses of the body and of the control points, which stay put for the run (scenes::SceneRun's
+/// models and vehicle::Simulation's control meshes).
+class SkinCache {
+ public:
+  std::shared_ptr<const deform::Skin> get(const deform::Mesh& body,
+                                          const std::vector<Eigen::Vector3d>& control_rest_m,
+                                          const vehicle::DeformationSettings& settings);
+
+ private:
+  using Key = std::tuple<const void*, const void*, double, std::size_t, int>;
+  std::map<Key, std::shared_ptr<const deform::Skin>> skins_;
+};
+
+/// The shared builds of a run's cars: one per skin of SkinCache (DESIGN.md section 8).
 class CarSkinBuilds {
  public:
   std::shared_ptr<const CarSkin::Build> get(const deform::Mesh& body,
@@ -131,8 +143,8 @@ class CarSkinBuilds {
                                             const vehicle::DeformationSettings& settings);
 
  private:
-  using Key = std::tuple<const void*, const void*, double, std::size_t, int>;
-  std::map<Key, std::shared_ptr<const CarSkin::Build>> builds_;
+  SkinCache skins_;
+  std::map<const deform::Skin*, std::shared_ptr<const CarSkin::Build>> builds_;
 };
 
 }  // namespace scenes

@@ -4,15 +4,9 @@
 // (vehicle::CrashMetrics::residual_crush_m) compares shapes that change with the level of detail: a
 // 60-point hull cuts the sedan's front corners 12 cm behind the car. The render mesh at rest is the same
 // at every level, so only the crush can differ (docs/CRASH_CALIBRATION.md, "Convergence").
-#include <vehicle/simulation.hpp>
-
 #include <deform/mesh.hpp>
-#include <deform/skin.hpp>
 
 #include <Eigen/Core>
-#include <map>
-#include <memory>
-#include <tuple>
 #include <vector>
 
 namespace scenes {
@@ -30,19 +24,5 @@ struct SurfaceCrush {
 /// out of the struck end). Throws deform::InputError when `now_m` is not one position per vertex.
 SurfaceCrush surfaceCrush(const deform::Mesh& body, const std::vector<Eigen::Vector3f>& now_m,
                           const Eigen::Vector3d& direction);
-
-/// The skins that move render meshes for surfaceCrush: only the weights (no normals, no grid), one per
-/// body mesh, control mesh and skin settings, so the cars of one build share one. Keyed by the
-/// addresses of the body and of the control points, which stay put for a run.
-class SurfaceSkins {
- public:
-  std::shared_ptr<const deform::Skin> get(const deform::Mesh& body,
-                                          const std::vector<Eigen::Vector3d>& control_rest_m,
-                                          const vehicle::DeformationSettings& settings);
-
- private:
-  using Key = std::tuple<const void*, const void*, double, std::size_t, int>;
-  std::map<Key, std::shared_ptr<const deform::Skin>> skins_;
-};
 
 }  // namespace scenes
