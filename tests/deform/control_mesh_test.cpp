@@ -1,3 +1,4 @@
+#include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
 
@@ -219,4 +220,36 @@ TEST_CASE("a hull far from the origin keeps its precision", "[control_mesh]") {
   REQUIRE(far.points_m.size() == near.points_m.size());
   CHECK(far.volume_m3 == Approx(near.volume_m3).epsilon(1e-6));
   CHECK((far.centre_of_mass_m - offset - near.centre_of_mass_m).norm() < 1e-6);
+}
+
+TEST_CASE("points in flat faces go into the same triangles whether found by the grid or among all",
+          "[control_mesh]") {
+  // triangulateOnConvexSurface's two ways of finding the triangle a dropped point lies in: the grid's
+  // near list (the default) and the scan of every triangle (the reference) give the same surface, to the
+  // bit. Inputs with many points inside flat faces: a box's faces sampled on a lattice, a sphere with a
+  // flattened belt, and the even control meshes of the built-in sedan (whose flat sides and roof
+  // are where the hull drops the most points).
+  std::vector<std::vector<Eigen::Vector3d>> sets;
+  std::vector<Eigen::Vector3d> box;
+  for (int i = 0; i <= 12; ++i)
+    for (int j = 0; j <= 8; ++j) {
+      const double u = -2.4 + 0.4 * i, v = -0.9 + 0.225 * j, w = 1.4 * j / 8.0;
+      box.insert(box.end(), {{u, v, 0}, {u, v, 1.4}, {u, -0.9, w}, {u, 0.9, w}, {-2.4, v, w}, {2.4, v, w}});
+    }
+  sets.push_back(box);
+  auto belt = test_points::sphere(2000, {2.4, 0.9, 0.7});
+  for (auto& p : belt) p.z() = std::clamp(p.z(), -0.4, 0.4);
+  sets.push_back(belt);
+  std::vector<Eigen::Vector3d> car;
+  for (const auto& p : deform::makeSedan(4000).body.positions_m) car.push_back(p.cast<double>());
+  for (std::size_t target : {60u, 1000u}) sets.push_back(deform::buildControlMesh(car, target).points_m);
+  for (const auto& points : sets) {
+    CAPTURE(points.size());
+    const ControlMesh by_cells = deform::triangulateOnConvexSurface(points, "test", true);
+    const ControlMesh reference = deform::triangulateOnConvexSurface(points, "test", false);
+    CHECK(by_cells.points_m.size() >
+          deform::convexHull(points, "test", deform::FacetSplit::Diagonals).points_m.size());
+    CHECK(by_cells.points_m == reference.points_m);
+    CHECK(by_cells.triangles == reference.triangles);
+  }
 }

@@ -78,9 +78,11 @@ LodMethod parseLodMethod(const std::string& text, const std::string& field);
 
 /// A closed triangulation through `points`, all of which lie on a convex surface: their convex hull,
 /// with the points it drops (those inside flat faces) inserted into those faces, and Delaunay edge flips
-/// inside flat regions. Every distinct point is a vertex; triangles face outward.
+/// inside flat regions. Every distinct point is a vertex; triangles face outward. A dropped point goes
+/// into the triangle nearest it, found among those listed near it in a grid (`nearest_by_cells`; about
+/// linear in the points) or among all of them (false: the reference, quadratic), with the same result.
 ControlMesh triangulateOnConvexSurface(const std::vector<Eigen::Vector3d>& points,
-                                       const char* source = "mesh");
+                                       const char* source = "mesh", bool nearest_by_cells = true);
 
 /// Gaps, edge lengths and area of `mesh`.
 ControlMeshStats controlMeshStats(const ControlMesh& mesh);
