@@ -141,44 +141,107 @@ void refineHull(ControlMesh& mesh, std::size_t target) {
   }
 }
 
-/// Farthest-point sampling: starts at the candidate farthest from the centre, then repeatedly takes the
-/// candidate farthest from everything taken so far. The largest gap left is at most twice the smallest
-/// possible for that many points. Ties go to the lower index (deterministic). With `mirror_of` (each
-/// candidate's mirror image), points are taken with their mirror images, so a symmetric body gets a
-/// symmetric set; an odd remainder is taken on the plane of symmetry.
-///
-/// Corners first: while some candidate flagged in `corner` is at least `corner_spacing_m` from
-/// everything taken, only corners are considered, so a coarse control mesh keeps the body's extreme
-/// points (a box's 8 corners, a car's nose and roof line) and its volume.
+}  // namespace
+
 std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candidates, std::size_t count,
                                      const Eigen::Vector3d& centre, const std::vector<uint32_t>& mirror_of,
-                                     const std::vector<char>& corner, double corner_spacing_m) {
+                                     const std::vector<char>& corner, double corner_spacing_m,
+                                     bool by_cells) {
+  const bool symmetric = !mirror_of.empty();
   std::vector<double> nearest_taken2(candidates.size(), std::numeric_limits<double>::infinity());
+  // The farthest candidate of each kind (any, corners, on the plane, corners on the plane): heaps of
+  // (squared distance to the nearest taken, index), the largest distance and then the lowest index on
+  // top; an entry whose distance has since shrunk is dropped when it comes up.
+  using Entry = std::pair<double, uint32_t>;
+  const auto below = [](const Entry& a, const Entry& b) {
+    return a.first < b.first || (a.first == b.first && a.second > b.second);
+  };
+  std::array<std::vector<Entry>, 4> heaps;
+  const auto kinds = [&](uint32_t c) {
+    return (corner[c] ? 1u : 0u) | (symmetric && mirror_of[c] == c ? 2u : 0u);
+  };
+  const auto push = [&](uint32_t c) {
+    for (unsigned kind = 0; kind < 4; ++kind)
+      if ((kinds(c) & kind) == kind) {
+        heaps[kind].emplace_back(nearest_taken2[c], c);
+        std::push_heap(heaps[kind].begin(), heaps[kind].end(), below);
+      }
+  };
+  const auto top = [&](unsigned kind) {
+    std::vector<Entry>& heap = heaps[kind];
+    while (!heap.empty() && heap.front().first != nearest_taken2[heap.front().second]) {
+      std::pop_heap(heap.begin(), heap.end(), below);
+      heap.pop_back();
+    }
+    return heap.empty() ? Entry{-1.0, static_cast<uint32_t>(candidates.size())} : heap.front();
+  };
+  // Candidates by cell, so that a point taken updates only those nearer it than the largest gap (no
+  // other can come nearer to it than to what was taken before): about linear in the points taken.
+  Eigen::Vector3d lo = candidates.front(), hi = lo;
+  for (const auto& c : candidates) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const Eigen::Vector3d size = (hi - lo).cwiseMax(1e-9);
+  const double cell_m = std::max(2 * std::cbrt(size.prod() / static_cast<double>(candidates.size())),
+                                 std::cbrt(size.prod() / 1e6));
+  const Eigen::Vector3i cells = ((size / cell_m).array().floor() + 1).cast<int>().matrix();
+  const auto cellOf = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i {
+    const Eigen::Vector3d at =
+        ((p - lo) / cell_m).cwiseMax(0.0).cwiseMin((cells.array() - 1).matrix().cast<double>());
+    return at.array().floor().cast<int>();
+  };
+  const auto index = [&](const Eigen::Vector3i& c) {
+    return static_cast<std::size_t>(c.x()) +
+           static_cast<std::size_t>(cells.x()) *
+               (static_cast<std::size_t>(c.y()) +
+                static_cast<std::size_t>(cells.y()) * static_cast<std::size_t>(c.z()));
+  };
+  std::vector<std::vector<uint32_t>> in_cell(static_cast<std::size_t>(cells.prod()));
+  for (uint32_t c = 0; c < candidates.size(); ++c) in_cell[index(cellOf(candidates[c]))].push_back(c);
+
   std::vector<uint32_t> taken;
   auto take = [&](uint32_t i) {
     taken.push_back(i);
-    for (std::size_t c = 0; c < candidates.size(); ++c)
-      nearest_taken2[c] = std::min(nearest_taken2[c], (candidates[c] - candidates[i]).squaredNorm());
+    const Eigen::Vector3d& p = candidates[i];
+    if (taken.size() == 1 || !by_cells) {  // every candidate (the reference: at every point taken)
+      for (uint32_t c = 0; c < candidates.size(); ++c) {
+        const double d2 = (candidates[c] - p).squaredNorm();
+        if (d2 < nearest_taken2[c]) {
+          nearest_taken2[c] = d2;
+          if (by_cells) push(c);
+        }
+      }
+      return;
+    }
+    const double reach_m = std::sqrt(top(0).first) * (1 + 1e-9);
+    const Eigen::Vector3i first = cellOf(p.array() - reach_m), last = cellOf(p.array() + reach_m);
+    for (int x = first.x(); x <= last.x(); ++x)
+      for (int y = first.y(); y <= last.y(); ++y)
+        for (int z = first.z(); z <= last.z(); ++z)
+          for (uint32_t c : in_cell[index({x, y, z})]) {
+            const double d2 = (candidates[c] - p).squaredNorm();
+            if (d2 < nearest_taken2[c]) {
+              nearest_taken2[c] = d2;
+              push(c);
+            }
+          }
   };
   bool corners_only = true;
-  auto farthest = [&](bool on_plane_only, const auto& score) {
-    std::size_t best = candidates.size();
-    double best_score = -1;
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      if (on_plane_only && mirror_of[c] != c) continue;
-      if (corners_only && !corner[c]) continue;
-      if (score(c) > best_score) best_score = score(c), best = c;
-    }
-    return std::make_pair(best, best_score);
-  };
   bool first = true;
   while (taken.size() < count) {
-    const bool symmetric = !mirror_of.empty();
     const bool need_single = symmetric && count - taken.size() == 1;
-    auto pick = [&] {
-      return first ? farthest(need_single,
-                              [&](std::size_t c) { return (candidates[c] - centre).squaredNorm(); })
-                   : farthest(need_single, [&](std::size_t c) { return nearest_taken2[c]; });
+    auto pick = [&]() -> std::pair<std::size_t, double> {
+      if (!first && by_cells) {
+        const Entry best = top((corners_only ? 1u : 0u) | (need_single ? 2u : 0u));
+        return {best.second, best.first};
+      }
+      std::size_t best = candidates.size();
+      double best_score = -1;
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        if (need_single && mirror_of[c] != c) continue;
+        if (corners_only && !corner[c]) continue;
+        const double score = first ? (candidates[c] - centre).squaredNorm() : nearest_taken2[c];
+        if (score > best_score) best_score = score, best = c;
+      }
+      return {best, best_score};
     };
     auto [next, score] = pick();
     if (corners_only &&
@@ -193,6 +256,8 @@ std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candida
   }
   return taken;
 }
+
+namespace {
 
 /// Mirror images within the set (y -> -y), or empty when some point has none. Points within `tol_m` of
 /// the plane are their own images.
@@ -294,7 +359,7 @@ ControlMesh evenControlMesh(const ControlMesh& hull, std::size_t target, const s
     mirror = mirrorPairs(candidates, plane_tol_m);
   }
   const auto taken =
-      farthestPoints(candidates, target, hull.centre_of_mass_m, mirror, corner, corner_spacing_m);
+      farthestPoints(candidates, target, hull.centre_of_mass_m, mirror, corner, corner_spacing_m, true);
   std::vector<Eigen::Vector3d> chosen;
   for (uint32_t i : taken) chosen.push_back(candidates[i]);
   ControlMesh mesh = triangulateOnConvexSurface(chosen, where.c_str());

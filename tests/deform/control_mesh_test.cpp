@@ -253,3 +253,43 @@ TEST_CASE("points in flat faces go into the same triangles whether found by the 
     CHECK(by_cells.triangles == reference.triangles);
   }
 }
+
+TEST_CASE("farthest-point sampling by cells and heaps takes the reference's points, in its order",
+          "[control_mesh]") {
+  // Candidates as the even method makes them: on a surface, some flagged as corners, mirrored in y with
+  // a few on the plane; and a lattice, whose many equal distances test the ties (lowest index first).
+  std::vector<Eigen::Vector3d> half = test_points::sphere(1500, {2.4, 0.9, 0.7});
+  std::vector<Eigen::Vector3d> mirrored;
+  for (const auto& p : half)
+    if (p.y() > 0.05)
+      mirrored.insert(mirrored.end(), {p, {p.x(), -p.y(), p.z()}});
+    else if (p.y() > -0.05)
+      mirrored.emplace_back(p.x(), 0.0, p.z());
+  std::vector<uint32_t> mirror_of(mirrored.size());
+  for (uint32_t i = 0; i < mirrored.size(); ++i)
+    mirror_of[i] = mirrored[i].y() > 0 ? i + 1 : mirrored[i].y() < 0 ? i - 1 : i;
+  std::vector<char> corners(mirrored.size(), 0);
+  for (std::size_t i = 0; i < mirrored.size(); i += 7) {
+    corners[i] = 1;
+    corners[mirror_of[i]] = 1;
+  }
+  std::vector<Eigen::Vector3d> lattice;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 3; ++k) lattice.emplace_back(0.25 * i, 0.25 * j, 0.25 * k);
+  const std::vector<char> no_corners(lattice.size(), 0), every_fifth = [&] {
+    std::vector<char> c(lattice.size(), 0);
+    for (std::size_t i = 0; i < c.size(); i += 5) c[i] = 1;
+    return c;
+  }();
+  for (std::size_t count : {7u, 60u, 301u, 1200u}) {
+    CAPTURE(count);
+    const Eigen::Vector3d centre(0.1, 0, 0.05);
+    CHECK(deform::farthestPoints(mirrored, count, centre, mirror_of, corners, 0.3, true) ==
+          deform::farthestPoints(mirrored, count, centre, mirror_of, corners, 0.3, false));
+    CHECK(deform::farthestPoints(lattice, count, centre, {}, no_corners, 0.0, true) ==
+          deform::farthestPoints(lattice, count, centre, {}, no_corners, 0.0, false));
+    CHECK(deform::farthestPoints(lattice, count, centre, {}, every_fifth, 0.6, true) ==
+          deform::farthestPoints(lattice, count, centre, {}, every_fifth, 0.6, false));
+  }
+}

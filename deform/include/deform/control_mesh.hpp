@@ -73,6 +73,22 @@ enum class LodMethod {
 ControlMesh buildControlMesh(const std::vector<Eigen::Vector3d>& points, std::size_t target_points,
                              const char* source = "mesh", LodMethod method = LodMethod::Even);
 
+/// Farthest-point sampling of `count` of `candidates` (the even method's choice of control points): starts
+/// at the candidate farthest from `centre`, then repeatedly takes the candidate farthest from everything
+/// taken so far. The largest gap left is at most twice the smallest possible for that many points. Ties go
+/// to the lower index (deterministic). With `mirror_of` (each candidate's mirror image), points are taken
+/// with their mirror images, so a symmetric body gets a symmetric set; an odd remainder is taken on the
+/// plane of symmetry. Corners first: while some candidate flagged in `corner` is at least
+/// `corner_spacing_m` from everything taken, only corners are considered, so a coarse control mesh keeps
+/// the body's extreme points (a box's 8 corners, a car's nose and roof line) and its volume.
+/// `by_cells`: a point taken updates only the candidates nearer it than the largest gap (found by a grid),
+/// and heaps give the farthest, about C log C for C candidates; false scans every candidate at every point
+/// (the reference, C x count). The same result either way. Returns the indices taken, in order.
+std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candidates, std::size_t count,
+                                     const Eigen::Vector3d& centre, const std::vector<uint32_t>& mirror_of,
+                                     const std::vector<char>& corner, double corner_spacing_m,
+                                     bool by_cells = true);
+
 /// Parses "even" or "simplify"; throws InputError naming `field` otherwise.
 LodMethod parseLodMethod(const std::string& text, const std::string& field);
 
