@@ -2,6 +2,7 @@
 // and samples on its triangles) inside the other, or within the contact margin of it, each with the
 // nearest place on the other surface.
 #include "body_group_impl.hpp"
+#include "point_bounds.hpp"
 #include "triangle_distance.hpp"
 
 #include <algorithm>
@@ -15,17 +16,8 @@ namespace {
 constexpr double kSampleSpacing_m = 0.1;
 constexpr int kFewestPerEdge = 3, kMostPerEdge = 8;
 
-Eigen::Vector3d lowest(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d m = p.front();
-  for (const auto& q : p) m = m.cwiseMin(q);
-  return m;
-}
-
-Eigen::Vector3d highest(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d m = p.front();
-  for (const auto& q : p) m = m.cwiseMax(q);
-  return m;
-}
+using detail::highest;
+using detail::lowest;
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 
+#include "point_bounds.hpp"
 #include "sweep_order.hpp"
 
 namespace deform {
@@ -177,8 +178,7 @@ std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candida
   };
   // Candidates by cell, so that a point taken updates only those nearer it than the largest gap (no
   // other can come nearer to it than to what was taken before): about linear in the points taken.
-  Eigen::Vector3d lo = candidates.front(), hi = lo;
-  for (const auto& c : candidates) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const Eigen::Vector3d lo = detail::lowest(candidates), hi = detail::highest(candidates);
   const Eigen::Vector3d size = (hi - lo).cwiseMax(1e-9);
   const double cell_m = std::max(2 * std::cbrt(size.prod() / static_cast<double>(candidates.size())),
                                  std::cbrt(size.prod() / 1e6));

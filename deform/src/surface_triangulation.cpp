@@ -5,6 +5,8 @@
 #include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
 
+#include "point_bounds.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -22,18 +24,6 @@ using Directed = std::pair<uint32_t, uint32_t>;
 constexpr double kFlatDegrees = 30.0;
 /// Largest fold a flip may make, as a fraction of the new edge's length.
 constexpr double kMaxFoldRatio = 0.02;
-
-Eigen::Vector3d lowest(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d m = points.front();
-  for (const auto& p : points) m = m.cwiseMin(p);
-  return m;
-}
-
-Eigen::Vector3d highest(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d m = points.front();
-  for (const auto& p : points) m = m.cwiseMax(p);
-  return m;
-}
 
 /// The triangles whose distance to a point (SurfaceBuilder::distanceToTriangle) can be at most
 /// `reach_m`: each listed in the cells of a uniform grid that its bounding box, grown by reach_m / kappa,
@@ -110,7 +100,7 @@ class SurfaceBuilder {
   /// `cell_m`: the grid of TriangleCells, about the spacing of the points to insert.
   SurfaceBuilder(ControlMesh& mesh, double cell_m, double extent_m, bool by_cells)
       : mesh_(mesh),
-        cells_(lowest(mesh.points_m), highest(mesh.points_m), cell_m, 1e-6 * extent_m),
+        cells_(detail::lowest(mesh.points_m), detail::highest(mesh.points_m), cell_m, 1e-6 * extent_m),
         rounding_m_(1e-9 * extent_m),
         by_cells_(by_cells) {
     for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) link(t);
