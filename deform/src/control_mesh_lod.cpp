@@ -2,6 +2,7 @@
 // refined (longest-edge bisection of its faces) to a target number of control points.
 #include <deform/control_mesh.hpp>
 #include <deform/error.hpp>
+#include <deform/vertex_grid.hpp>
 
 #include <meshoptimizer.h>
 
@@ -14,7 +15,6 @@
 #include <string>
 #include <tuple>
 
-#include "point_bounds.hpp"
 #include "sweep_order.hpp"
 
 namespace deform {
@@ -178,25 +178,8 @@ std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candida
   };
   // Candidates by cell, so that a point taken updates only those nearer it than the largest gap (no
   // other can come nearer to it than to what was taken before): about linear in the points taken.
-  const Eigen::Vector3d lo = detail::lowest(candidates), hi = detail::highest(candidates);
-  const Eigen::Vector3d size = (hi - lo).cwiseMax(1e-9);
-  const double cell_m = std::max(2 * std::cbrt(size.prod() / static_cast<double>(candidates.size())),
-                                 std::cbrt(size.prod() / 1e6));
-  const Eigen::Vector3i cells = ((size / cell_m).array().floor() + 1).cast<int>().matrix();
-  const auto cellOf = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i {
-    const Eigen::Vector3d at =
-        ((p - lo) / cell_m).cwiseMax(0.0).cwiseMin((cells.array() - 1).matrix().cast<double>());
-    return at.array().floor().cast<int>();
-  };
-  const auto index = [&](const Eigen::Vector3i& c) {
-    return static_cast<std::size_t>(c.x()) +
-           static_cast<std::size_t>(cells.x()) *
-               (static_cast<std::size_t>(c.y()) +
-                static_cast<std::size_t>(cells.y()) * static_cast<std::size_t>(c.z()));
-  };
-  std::vector<std::vector<uint32_t>> in_cell(static_cast<std::size_t>(cells.prod()));
-  for (uint32_t c = 0; c < candidates.size(); ++c) in_cell[index(cellOf(candidates[c]))].push_back(c);
-
+  const VertexGrid grid(candidates, 4);
+  std::vector<uint32_t> near;
   std::vector<uint32_t> taken;
   auto take = [&](uint32_t i) {
     taken.push_back(i);
@@ -212,17 +195,15 @@ std::vector<uint32_t> farthestPoints(const std::vector<Eigen::Vector3d>& candida
       return;
     }
     const double reach_m = std::sqrt(top(0).first) * (1 + 1e-9);
-    const Eigen::Vector3i first = cellOf(p.array() - reach_m), last = cellOf(p.array() + reach_m);
-    for (int x = first.x(); x <= last.x(); ++x)
-      for (int y = first.y(); y <= last.y(); ++y)
-        for (int z = first.z(); z <= last.z(); ++z)
-          for (uint32_t c : in_cell[index({x, y, z})]) {
-            const double d2 = (candidates[c] - p).squaredNorm();
-            if (d2 < nearest_taken2[c]) {
-              nearest_taken2[c] = d2;
-              push(c);
-            }
-          }
+    near.clear();
+    grid.query({(p.array() - reach_m).matrix(), (p.array() + reach_m).matrix()}, near);
+    for (uint32_t c : near) {
+      const double d2 = (candidates[c] - p).squaredNorm();
+      if (d2 < nearest_taken2[c]) {
+        nearest_taken2[c] = d2;
+        push(c);
+      }
+    }
   };
   bool corners_only = true;
   bool first = true;

@@ -7,11 +7,20 @@
 namespace deform {
 
 VertexGrid::VertexGrid(const std::vector<Eigen::Vector3f>& rest_m, double per_cell) {
+  build(rest_m, per_cell);
+}
+
+VertexGrid::VertexGrid(const std::vector<Eigen::Vector3d>& rest_m, double per_cell) {
+  build(rest_m, per_cell);
+}
+
+template <class Point>
+void VertexGrid::build(const std::vector<Point>& rest_m, double per_cell) {
   if (rest_m.empty()) return;
-  bounds_.min_m = bounds_.max_m = rest_m[0].cast<double>();
-  for (const Eigen::Vector3f& p : rest_m) {
-    bounds_.min_m = bounds_.min_m.cwiseMin(p.cast<double>());
-    bounds_.max_m = bounds_.max_m.cwiseMax(p.cast<double>());
+  bounds_.min_m = bounds_.max_m = rest_m[0].template cast<double>();
+  for (const Point& p : rest_m) {
+    bounds_.min_m = bounds_.min_m.cwiseMin(p.template cast<double>());
+    bounds_.max_m = bounds_.max_m.cwiseMax(p.template cast<double>());
   }
   // Cubic cells sized for `per_cell` vertices if they filled the box; a thin box (a flat test grid)
   // would get cells far larger than its thickness, so the edge is taken over the extents that are not
@@ -30,7 +39,7 @@ VertexGrid::VertexGrid(const std::vector<Eigen::Vector3f>& rest_m, double per_ce
   cell_begin_.assign(count + 1, 0);
   std::vector<uint32_t> cell_of(rest_m.size());
   for (std::size_t v = 0; v < rest_m.size(); ++v) {
-    const Eigen::Vector3i c = cellOf(rest_m[v].cast<double>());
+    const Eigen::Vector3i c = cellOf(rest_m[v].template cast<double>());
     cell_of[v] = static_cast<uint32_t>((c.z() * cells_.y() + c.y()) * cells_.x() + c.x());
     ++cell_begin_[cell_of[v] + 1];
   }

@@ -15,6 +15,8 @@ class VertexGrid {
   VertexGrid() = default;
   /// About `per_cell` rest positions to a cell on average (cubic cells over their bounding box).
   explicit VertexGrid(const std::vector<Eigen::Vector3f>& rest_m, double per_cell = 8);
+  /// The same over double positions (the control mesh's candidates, deform/src/control_mesh_lod.cpp).
+  explicit VertexGrid(const std::vector<Eigen::Vector3d>& rest_m, double per_cell = 8);
 
   /// Appends to `out` every vertex whose rest position lies in a cell overlapping `box` (a superset of
   /// those inside it); returns how many were appended.
@@ -32,6 +34,8 @@ class VertexGrid {
   std::vector<uint32_t> cell_begin_;  ///< vertices of cell c: vertices_[cell_begin_[c] .. [c + 1])
   std::vector<uint32_t> vertices_;    ///< vertex indices, cell-major
   Eigen::Vector3i cellOf(const Eigen::Vector3d& p_m) const;
+  template <class Point>
+  void build(const std::vector<Point>& rest_m, double per_cell);
 };
 
 }  // namespace deform
