@@ -311,9 +311,8 @@ void registerRunCommand(CLI::App& app) {
                 static_cast<unsigned long long>(s["steps"].get<uint64_t>()), s["time_s"].get<double>(),
                 s["timing_ms"]["total"].get<double>() / 1e3, s["state_hash"].get<std::string>().c_str());
     std::printf(
-        "impact %.1f km/h, residual crush %.3f m (max %.3f m; on the car's surface %.3f m), max dynamic "
-        "crush "
-        "%.3f m, restitution %.2f\n",
+        "impact %.1f km/h, residual crush %.3f m (max %.3f m; on the car's surface %.3f m), "
+        "max dynamic crush %.3f m, restitution %.2f\n",
         s["impact_speed_mps"].get<double>() * 3.6, s["residual_crush_m"].get<double>(),
         s["max_residual_crush_m"].get<double>(), s["surface_residual_crush_m"].get<double>(),
         s["max_dynamic_crush_m"].get<double>(), s["restitution"].get<double>());

@@ -277,7 +277,7 @@ nlohmann::json metricsJson(const vehicle::CrashMetrics& m) {
 
 }  // namespace
 
-SurfaceCrush SceneRun::surfaceCrush(std::size_t car, SkinCache& skins) const {
+vehicle::CrushStations SceneRun::surfaceCrush(std::size_t car, SkinCache& skins) const {
   const vehicle::CarId id = cars_[car].id;
   const vehicle::CrashMetrics m = simulation_->metrics(id);
   if (!m.impacted) return {};
@@ -301,9 +301,9 @@ nlohmann::json SceneRun::summary() const {
     any_diverged = any_diverged || m.diverged;
     nlohmann::json car = metricsJson(m);
     // The same crush measured on the car's own surface: the render mesh as the car's skin moves it.
-    const SurfaceCrush surface = surfaceCrush(i, skins);
-    car["surface_residual_crush_m"] = surface.residual_crush_m;
-    car["surface_max_residual_crush_m"] = surface.max_residual_crush_m;
+    const vehicle::CrushStations surface = surfaceCrush(i, skins);
+    car["surface_residual_crush_m"] = surface.mean_m;
+    car["surface_max_residual_crush_m"] = surface.max_m;
     car["surface_crush_profile_m"] = profileJson(surface.profile_m);
     car["surface_crush_height_m"] = surface.height_m;
     car["name"] = scene_.vehicles[i].name;

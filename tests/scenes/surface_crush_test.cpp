@@ -19,18 +19,18 @@ TEST_CASE("surface crush: a box's front pushed back reads the push at every stat
   std::vector<Eigen::Vector3f> now = box.positions_m;
   for (auto& p : now)
     if (p.x() > 1.999f) p.x() -= p.y() > -0.5f ? 0.25f : 0.0f;
-  const scenes::SurfaceCrush front = scenes::surfaceCrush(box, now, {1, 0, 0});
+  const vehicle::CrushStations front = scenes::surfaceCrush(box, now, {1, 0, 0});
   REQUIRE(front.profile_m.size() == 6);
   // Stations at y = -1 + (j + 0.5) / 3: the first (y = -0.83) in the part left alone; the second
   // (y = -0.5) on the step's edge, where the mesh's triangles slope; the other four pushed.
   CHECK(front.profile_m[0] == Approx(0).margin(1e-6));
   for (std::size_t j = 2; j < 6; ++j) CHECK(front.profile_m[j] == Approx(0.25).margin(1e-6));
-  CHECK(front.max_residual_crush_m == Approx(0.25).margin(1e-6));
+  CHECK(front.max_m == Approx(0.25).margin(1e-6));
   CHECK(front.height_m >= -0.5);
   CHECK(front.height_m <= 0.5);
   // Seen from behind, nothing moved.
-  const scenes::SurfaceCrush back = scenes::surfaceCrush(box, now, {-1, 0, 0});
-  CHECK(back.residual_crush_m == Approx(0).margin(1e-6));
+  const vehicle::CrushStations back = scenes::surfaceCrush(box, now, {-1, 0, 0});
+  CHECK(back.mean_m == Approx(0).margin(1e-6));
   // One position per vertex, or a clear refusal.
   now.pop_back();
   CHECK_THROWS_AS(scenes::surfaceCrush(box, now, {1, 0, 0}), deform::InputError);
@@ -48,9 +48,9 @@ TEST_CASE("surface crush: the 56 km/h wall crash crushes the car's surface alike
         {scenes::parseOverride("vehicle.deformation.control_points=" + std::to_string(points))}));
     run.runToEnd();
     scenes::SkinCache skins;
-    const scenes::SurfaceCrush surface = run.surfaceCrush(0, skins);
+    const vehicle::CrushStations surface = run.surfaceCrush(0, skins);
     CHECK(surface.profile_m.size() == 6);
-    return surface.residual_crush_m;
+    return surface.mean_m;
   };
   const double coarse_m = crush(60), fine_m = crush(500);
   CHECK(coarse_m > 0.3);  // about half a metre, as the barrier tests

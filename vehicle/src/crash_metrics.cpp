@@ -71,4 +71,26 @@ std::vector<double> crushProfile(const std::vector<std::array<uint32_t, 3>>& tri
   return out;
 }
 
+CrushStations crushStations(const std::vector<std::array<uint32_t, 3>>& triangles,
+                            const std::vector<Eigen::Vector3d>& rest_m,
+                            const std::vector<Eigen::Vector3d>& now_m, const Eigen::Vector3d& direction) {
+  CrushStations out;
+  if (rest_m.empty()) return out;
+  std::size_t lead = 0;
+  for (std::size_t i = 1; i < rest_m.size(); ++i)
+    if (rest_m[i].dot(direction) > rest_m[lead].dot(direction)) lead = i;
+  out.height_m = rest_m[lead].z();
+  out.profile_m = crushProfile(triangles, rest_m, now_m, direction, out.height_m);
+  double sum = 0;
+  std::size_t hits = 0;
+  for (double c : out.profile_m) {
+    if (std::isnan(c)) continue;  // the station's line misses the surface
+    sum += c;
+    ++hits;
+    out.max_m = std::max(out.max_m, c);
+  }
+  if (hits > 0) out.mean_m = sum / static_cast<double>(hits);
+  return out;
+}
+
 }  // namespace vehicle

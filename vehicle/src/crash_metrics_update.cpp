@@ -159,33 +159,21 @@ CrashMetrics Simulation::metrics(CarId car) const {
   const DeformableCar& dc = impl_->of(car);
   CrashMetrics out = dc.metrics;
   if (!out.impacted) return out;
-  // At the height of the struck end's most protruding rest point (the bumper, for a frontal impact).
-  const auto& rest = dc.body_settings->rest_positions_m;
+  const auto& rest = dc.body_settings->rest_positions_m;  // the control mesh's points
+  const auto& now = dc.body->state().positions_m;
   out.crushed_volume_m3 =
-      dc.build->control_mesh.volume_m3 -
-      deform::enclosedVolume_m3(dc.body->state().positions_m, dc.build->control_mesh.triangles);
-  std::size_t lead = 0;
-  for (std::size_t i = 1; i < rest.size(); ++i)
-    if (rest[i].dot(dc.impact_direction_vehicle) > rest[lead].dot(dc.impact_direction_vehicle)) lead = i;
-  const std::vector<double> crush = crushProfile(dc.build->control_mesh, dc.body->state().positions_m,
-                                                 dc.impact_direction_vehicle, rest[lead].z());
+      dc.build->control_mesh.volume_m3 - deform::enclosedVolume_m3(now, dc.build->control_mesh.triangles);
+  const CrushStations stations =
+      crushStations(dc.build->control_mesh.triangles, rest, now, dc.impact_direction_vehicle);
   for (std::size_t i = 0; i < rest.size(); ++i)
     out.max_dent_m =
-        std::max(out.max_dent_m,
-                 -(dc.body->state().positions_m[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
-  out.crush_profile_m = crush;
-  out.crush_height_m = rest[lead].z();
+        std::max(out.max_dent_m, -(now[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));
+  out.crush_profile_m = stations.profile_m;
+  out.crush_height_m = stations.height_m;
+  out.residual_crush_m = stations.mean_m;
+  out.max_residual_crush_m = stations.max_m;
   if (dc.impact_direction_vehicle.norm() > 1e-12)
     out.impact_direction_vehicle = dc.impact_direction_vehicle.normalized();
-  double sum = 0;
-  std::size_t hits = 0;
-  for (double c : crush) {
-    if (std::isnan(c)) continue;  // the station's line misses the surface
-    sum += c;
-    ++hits;
-    out.max_residual_crush_m = std::max(out.max_residual_crush_m, c);
-  }
-  if (hits > 0) out.residual_crush_m = sum / static_cast<double>(hits);
   return out;
 }
 

@@ -30,9 +30,9 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
   run.runToEnd();
   const vehicle::CrashMetrics m = run.simulation().metrics(run.carId(0));
   scenes::SkinCache skins;
-  const scenes::SurfaceCrush surface = run.surfaceCrush(0, skins);
+  const vehicle::CrushStations surface = run.surfaceCrush(0, skins);
   return {{"scene_name", config.name},
-          {"surface_residual_crush_m", surface.residual_crush_m},
+          {"surface_residual_crush_m", surface.mean_m},
           {"surface_crush_profile_m", scenes::profileJson(surface.profile_m)},
           {"surface_crush_height_m", surface.height_m},
           {"impact_speed_mps", m.impact_speed_mps},

@@ -75,7 +75,7 @@ class SceneRun {
   const deform::VehicleModel& model(std::size_t car) const { return *cars_[car].model; }
   /// The crush of car `car`'s own surface now (scenes::surfaceCrush): its render mesh moved by its skin,
   /// built through `skins` (cars of one build share it); empty before the car's first impact.
-  SurfaceCrush surfaceCrush(std::size_t car, SkinCache& skins) const;
+  vehicle::CrushStations surfaceCrush(std::size_t car, SkinCache& skins) const;
   /// Obstacle id in the world of the scene's obstacle `index`.
   vehicle::ObstacleId obstacleId(std::size_t index) const { return obstacle_ids_[index]; }
 

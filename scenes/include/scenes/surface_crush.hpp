@@ -4,6 +4,8 @@
 // (vehicle::CrashMetrics::residual_crush_m) compares shapes that change with the level of detail: a
 // 60-point hull cuts the sedan's front corners 12 cm behind the car. The render mesh at rest is the same
 // at every level, so only the crush can differ (docs/CRASH_CALIBRATION.md, "Convergence").
+#include <vehicle/simulation.hpp>
+
 #include <deform/mesh.hpp>
 
 #include <Eigen/Core>
@@ -11,18 +13,11 @@
 
 namespace scenes {
 
-struct SurfaceCrush {
-  /// Intrusion at six equally spaced stations across the width of the rest mesh, in order along up x
-  /// direction, NaN where a station's line misses the mesh [m].
-  std::vector<double> profile_m;
-  double height_m = 0;              ///< of the rest mesh's most protruding vertex along the direction [m]
-  double residual_crush_m = 0;      ///< the stations' mean (those that hit) [m]
-  double max_residual_crush_m = 0;  ///< the largest station [m]
-};
-
-/// `body` at rest against its vertices `now_m` (vehicle frame), looking along `direction` (horizontal,
-/// out of the struck end). Throws deform::InputError when `now_m` is not one position per vertex.
-SurfaceCrush surfaceCrush(const deform::Mesh& body, const std::vector<Eigen::Vector3f>& now_m,
-                          const Eigen::Vector3d& direction);
+/// vehicle::crushStations of `body` at rest against its vertices `now_m` (vehicle frame), looking along
+/// `direction` (horizontal, out of the struck end): the height is the rest mesh's most protruding
+/// vertex's, the stations span its width. Throws deform::InputError when `now_m` is not one position per
+/// vertex.
+vehicle::CrushStations surfaceCrush(const deform::Mesh& body, const std::vector<Eigen::Vector3f>& now_m,
+                                    const Eigen::Vector3d& direction);
 
 }  // namespace scenes

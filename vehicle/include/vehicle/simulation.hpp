@@ -301,6 +301,20 @@ std::vector<double> crushProfile(const deform::ControlMesh& mesh,
                                  const std::vector<Eigen::Vector3d>& points_m,
                                  const Eigen::Vector3d& direction, double z_m, int stations = 6);
 
+/// The crash test's whole measurement of a closed surface (`triangles` over `rest_m` at rest and `now_m`
+/// now), looking along `direction` out of the struck end: crushProfile at the height of the rest point
+/// that protrudes most along `direction` (the bumper, for a frontal impact), with the stations' mean and
+/// largest (those whose line meets the surface) [m].
+struct CrushStations {
+  std::vector<double> profile_m;
+  double height_m = 0;
+  double mean_m = 0;
+  double max_m = 0;
+};
+CrushStations crushStations(const std::vector<std::array<uint32_t, 3>>& triangles,
+                            const std::vector<Eigen::Vector3d>& rest_m,
+                            const std::vector<Eigen::Vector3d>& now_m, const Eigen::Vector3d& direction);
+
 /// The same measurement of any closed surface: `triangles` over the points `rest_m` at rest and `now_m`
 /// now (the render mesh's vertices, for the crush of the car's own surface, which unlike the control
 /// surface is the same at every level of detail). The stations span the width of `rest_m`.
