@@ -66,8 +66,10 @@ void DeformableBody::placeObstacles(const StepInputs& inputs, double behind_s) {
   const std::size_t count = inputs.contacts.size();
   placed_.assign(inputs.contacts.begin(), inputs.contacts.end());
   shifted_.resize(count);  // never reallocated while placed_ points into it: sized before use
-  for (std::size_t k = 0; k < count && k < inputs.contact_velocity_mps.size(); ++k) {
-    const Eigen::Vector3d offset = -behind_s * inputs.contact_velocity_mps[k];
+  for (std::size_t k = 0; k < count; ++k) {
+    Eigen::Vector3d offset{0, 0, 0};
+    if (k < inputs.contact_velocity_mps.size()) offset = -behind_s * inputs.contact_velocity_mps[k];
+    if (k < obstacle_inverse_mass_.size() && obstacle_inverse_mass_[k] > 0) offset += obstacle_offset_m_[k];
     if (offset.squaredNorm() == 0) continue;
     std::visit(
         [&](auto& shape) {
@@ -240,6 +242,8 @@ Eigen::Vector3d DeformableBody::obstacleVelocity(const StepInputs& inputs, uint3
   if (shape < inputs.contact_velocity_mps.size()) velocity_mps = inputs.contact_velocity_mps[shape];
   if (shape < inputs.contact_angular_velocity_radps.size())
     velocity_mps += inputs.contact_angular_velocity_radps[shape].cross(p_m - settings_->core_m);
+  if (shape < obstacle_inverse_mass_.size() && obstacle_inverse_mass_[shape] > 0)
+    velocity_mps += obstacle_dv_mps_[shape];
   return velocity_mps;
 }
 

@@ -214,7 +214,22 @@ void DeformableBody::iterate() {
   for (ContactPoint& c : contacts_) {
     const Eigen::Vector3d before = x[c.point];
     // Friction holds the point to the obstacle's surface, which moves (and turns) in this frame.
-    projectContact(x[c.point], c.carried_start_m, c.normal, c.surface_m, inputs_->contact_friction);
+    const double w_obstacle = obstacle_inverse_mass_[c.shape];
+    if (w_obstacle > 0) {
+      // A movable obstacle: the correction is shared by inverse mass, the obstacle moved back by its part
+      // (and its surface and the friction's anchor with it).
+      Eigen::Vector3d& shift = obstacle_shift_m_[c.shape];
+      Eigen::Vector3d corrected = x[c.point];
+      projectContact(corrected, c.carried_start_m + shift, c.normal, c.surface_m + shift,
+                     inputs_->contact_friction);
+      // Its share, as far as what holds it lets it go; the point takes the rest of the correction.
+      const Eigen::Vector3d correction = corrected - x[c.point];
+      const Eigen::Vector3d moved = heldMove(c.shape, -(w_obstacle / (w[c.point] + w_obstacle)) * correction);
+      x[c.point] += correction + moved;
+      shift += moved;
+    } else {
+      projectContact(x[c.point], c.carried_start_m, c.normal, c.surface_m, inputs_->contact_friction);
+    }
     c.moved_m += x[c.point] - before;
     movedBy(c.shape, c.point, x[c.point] - before);
   }
@@ -222,7 +237,20 @@ void DeformableBody::iterate() {
     const auto& k = c.corners;
     const double inverse_mass[3] = {w[k[0]], w[k[1]], k[2] == k[0] ? 0.0 : w[k[2]]};
     const Eigen::Vector3d before[3] = {x[k[0]], x[k[1]], x[k[2]]};
-    projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
+    const double w_obstacle = obstacle_inverse_mass_[c.shape];
+    if (w_obstacle > 0) {
+      Eigen::Vector3d& shift = obstacle_shift_m_[c.shape];
+      Eigen::Vector3d share{0, 0, 0};
+      projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m + shift,
+                         w_obstacle, &share);
+      const Eigen::Vector3d moved = heldMove(c.shape, share);
+      shift += moved;
+      // Held back: the corners take what the obstacle could not.
+      if (moved != share)
+        projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m + shift);
+    } else {
+      projectFaceContact(x[k[0]], x[k[1]], x[k[2]], inverse_mass, c.bary, c.normal, c.surface_m);
+    }
     for (int j = 0; j < (k[2] == k[0] ? 2 : 3); ++j) {
       c.moved_m[j] += x[k[j]] - before[j];
       movedBy(c.shape, k[j], x[k[j]] - before[j]);

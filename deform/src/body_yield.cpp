@@ -62,8 +62,18 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
       }
     }
     if (largest == nullptr) break;
-    const Eigen::Vector3d move = largest_m * largest->normal;
     const uint32_t shape = largest->shape;
+    // A movable obstacle gives way by its share (inverse masses), the core by the rest.
+    // A movable obstacle gives way by its share (inverse masses), as far as what holds it lets it; the
+    // core moves by the rest.
+    const double w_obstacle = obstacle_inverse_mass_[shape];
+    Eigen::Vector3d move = largest_m * largest->normal;
+    if (w_obstacle > 0) {
+      const Eigen::Vector3d given = heldMove(
+          shape, -(largest_m * w_obstacle / (core_inverse_mass_per_kg_ + w_obstacle)) * largest->normal);
+      obstacle_shift_m_[shape] += given;
+      move += given;
+    }
     const Eigen::Vector3d obstacle = obstacleVelocity(inputs, shape, core_start);
     const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;
     const Eigen::Vector3d impulse_Ns = move / (core_inverse_mass_per_kg_ * h);

@@ -94,6 +94,23 @@ void DeformableBody::refreshYieldForces() {
                                   s.bend_yield[k], laws[s.bends[k].material]);
 }
 
+Eigen::Vector3d DeformableBody::heldBack(uint32_t shape, Eigen::Vector3d v) const {
+  // Against each held normal in turn, a few rounds (two holders at an angle, a box in a corner).
+  for (int round = 0; round < 3; ++round)
+    for (const Eigen::Vector3d& n : obstacle_held_[shape]) {
+      const double into = n.dot(v);
+      if (into < 0) v -= into * n;
+    }
+  return v;
+}
+
+Eigen::Vector3d DeformableBody::heldMove(uint32_t shape, const Eigen::Vector3d& move_m) const {
+  if (obstacle_held_[shape].empty()) return move_m;
+  // The obstacle's displacement off its path (which its holders already shaped) stays out of them.
+  const Eigen::Vector3d now = obstacle_offset_m_[shape] + obstacle_shift_m_[shape];
+  return heldBack(shape, now + move_m) - now;
+}
+
 void DeformableBody::refreshColumn(std::size_t k) {
   const BodySettings& s = *settings_;
   const SpokeConstraint& c = s.spokes[k];
@@ -154,6 +171,13 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   for (std::size_t k = 0; k < inputs.contact_angular_velocity_radps.size(); ++k)
     if (!inputs.contact_angular_velocity_radps[k].allFinite())
       throw InputError("contact_angular_velocity_radps[" + std::to_string(k) + "]: not finite");
+  for (std::size_t k = 0; k < inputs.contact_held_normals.size(); ++k)
+    for (const Eigen::Vector3d& n : inputs.contact_held_normals[k])
+      if (!n.allFinite() || !(n.norm() > 0))
+        throw InputError("contact_held_normals[" + std::to_string(k) + "]: not a finite, non-zero normal");
+  for (std::size_t k = 0; k < inputs.contact_inverse_mass_per_kg.size(); ++k)
+    if (!std::isfinite(inputs.contact_inverse_mass_per_kg[k]) || inputs.contact_inverse_mass_per_kg[k] < 0)
+      throw InputError("contact_inverse_mass_per_kg[" + std::to_string(k) + "]: must be finite and >= 0");
   if (std::isnan(inputs.core_mass_kg) || !(inputs.core_mass_kg > 0))
     throw InputError("core_mass_kg: must be > 0 (infinite: a kinematic core)");
   if (!std::isfinite(inputs.contact_friction) || inputs.contact_friction < 0)
@@ -171,6 +195,18 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
 
   report_ = StepReport{};
   report_.contact_impulse_per_obstacle_Ns.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  report_.obstacle_displacement_m.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  report_.obstacle_velocity_change_mps.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  obstacle_inverse_mass_.assign(inputs.contacts.size(), 0.0);
+  for (std::size_t k = 0; k < inputs.contacts.size() && k < inputs.contact_inverse_mass_per_kg.size(); ++k)
+    obstacle_inverse_mass_[k] = inputs.contact_inverse_mass_per_kg[k];
+  obstacle_offset_m_.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  obstacle_dv_mps_.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  obstacle_shift_m_.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
+  obstacle_held_.assign(inputs.contacts.size(), {});
+  for (std::size_t k = 0; k < inputs.contacts.size() && k < inputs.contact_held_normals.size(); ++k)
+    for (const Eigen::Vector3d& n : inputs.contact_held_normals[k])
+      obstacle_held_[k].push_back(n.normalized());
   bool load_changed = false;
   if (state_.sleeping) {
     load_changed = loadChanged();
@@ -225,6 +261,11 @@ StepReport DeformableBody::endStep() {
   state_.time_s += dt_s;
   // Re-centre on the core: positions and velocities stay relative to it; the caller moves its rigid body.
   report.core_displacement_m = core_shift_m_;
+  for (std::size_t j = 0; j < obstacle_inverse_mass_.size(); ++j)
+    if (obstacle_inverse_mass_[j] > 0) {
+      report.obstacle_displacement_m[j] = obstacle_offset_m_[j];
+      report.obstacle_velocity_change_mps[j] = obstacle_dv_mps_[j];
+    }
   report.core_velocity_mps = core_velocity_mps_;
   if (core_inverse_mass_per_kg_ > 0)
     for (std::size_t i = 0; i < settings.pointCount(); ++i) {
@@ -310,6 +351,12 @@ void DeformableBody::beginSubstep(uint32_t k) {
   const StepInputs& inputs = *inputs_;
   StepReport& report = report_;
   const double h = h_s_;
+  // A movable obstacle goes on at its changed velocity (its prediction, as the core's).
+  for (std::size_t j = 0; j < obstacle_inverse_mass_.size(); ++j)
+    if (obstacle_inverse_mass_[j] > 0) {
+      obstacle_offset_m_[j] += h * obstacle_dv_mps_[j];
+      obstacle_shift_m_[j].setZero();
+    }
   placeObstacles(inputs, static_cast<double>(substeps_ - k) * h);
   const std::size_t n = settings.pointCount();
   auto& x = state_.positions_m;
@@ -453,6 +500,14 @@ void DeformableBody::endSubstep() {
     double* vs = v[0].data();
     for (std::size_t j = 3 * begin; j < 3 * end; ++j) vs[j] = (xs[j] - ps[j]) * inv_h;
   });
+  // A movable obstacle's velocity from its displacement, as the points' (XPBD Algorithm 1, line 16).
+  for (std::size_t j = 0; j < obstacle_inverse_mass_.size(); ++j)
+    if (obstacle_inverse_mass_[j] > 0) {
+      obstacle_offset_m_[j] += obstacle_shift_m_[j];
+      obstacle_dv_mps_[j] =
+          heldBack(static_cast<uint32_t>(j), obstacle_dv_mps_[j] + obstacle_shift_m_[j] * inv_h);
+      obstacle_shift_m_[j].setZero();
+    }
   report.contact_work_J += sub_.contact_work_x_h * inv_h;
   report.obstacle_work_J += sub_.obstacle_work_x_h * inv_h;
   report.contact_moment_Nms += sub_.contact_moment_x_h * inv_h;

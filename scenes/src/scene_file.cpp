@@ -173,7 +173,11 @@ DeformationConfig parseDeformation(std::optional<JsonObject> object, vehicle::Co
         object->fail("rigid_parts", "needs at least one box (or backstop shrunk_hull)");
     }
     s.inertial_scale = object->number("inertial_scale", s.inertial_scale, 0, 10);
-    s.visual_impulse_scale = object->number("visual_impulse_scale", s.visual_impulse_scale, 0, 10);
+    // Removed: a share of ODE's contact impulses with a plant handed to the nearest points, a dent no force
+    // of the body made. Vegetation now meets the body as every free obstacle does.
+    if (object->has("visual_impulse_scale"))
+      object->fail("visual_impulse_scale",
+                   "was removed: vegetation dents the body as every free obstacle does (delete the key)");
     s.yield_limited = object->boolean("yield_limited", s.yield_limited);
     s.anchored_columns = object->boolean("anchored_columns", s.anchored_columns);
     s.skip_when_idle = object->boolean("skip_when_idle", s.skip_when_idle);

@@ -75,6 +75,13 @@ TEST_CASE("unknown keys are refused naming file and key path", "[scenes]") {
   CHECK_THAT(refusal(doc), Catch::Contains("test.json: colour_grading: unknown key"));
 }
 
+TEST_CASE("the removed visual_impulse_scale is refused with the reason", "[scenes]") {
+  json doc = minimalScene();
+  doc["vehicle"]["deformation"] = {{"visual_impulse_scale", 0.05}};
+  CHECK_THAT(refusal(doc),
+             Catch::Contains("test.json: vehicle.deformation.visual_impulse_scale: was removed"));
+}
+
 TEST_CASE("wrong types are refused naming file and key path", "[scenes]") {
   json doc = minimalScene();
   doc["vehicle"]["mass_kg"] = "heavy";

@@ -187,33 +187,27 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
     dc.shapes.add(local, sweep, down, post, true);
     inputs.contact_velocity_mps.push_back(relative_mps);
     inputs.contact_angular_velocity_radps.push_back(relative_radps);
+    // Crush: a free obstacle (a box, a tree, a rigid car) is pushed inside the substeps by its mass, and
+    // takes the body's reaction below. Visual: what the chassis hits moves by ODE's contact alone.
+    const bool deformable_car =
+        other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0;
+    const double w_other = crush && !deformable_car ? world.inverseMass_per_kg(other) : 0.0;
+    inputs.contact_inverse_mass_per_kg.push_back(w_other);
+    // What holds it (ODE's contacts with the ground and static things this step), out of them.
+    std::vector<Eigen::Vector3d> held;
+    if (w_other > 0)
+      for (const ContactPoint& c : world.contacts()) {
+        const bool is_a = c.a == other, is_b = c.b == other;
+        if ((is_a || is_b) && world.inverseMass_per_kg(is_a ? c.b : c.a) == 0)
+          held.push_back(to_vehicle * (is_a ? c.normal : Eigen::Vector3d(-c.normal)));
+      }
+    inputs.contact_held_normals.push_back(std::move(held));
   }
   inputs.contacts = dc.shapes.shapes();
   inputs.surface_contact = dc.shapes.surfaceFlags();
   // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
   // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
   if (crush) inputs.core_mass_kg = car.chassisMass_kg();
-
-  // Vegetation (in either coupling): its contact impulses go to the nearest control points (inverse-
-  // distance weights).
-  const deform::BodyState& state = dc.body->state();
-  if (dc.settings.visual_impulse_scale > 0) {
-    constexpr std::size_t kNearest = 4;
-    for (const CarContact& c : contacts) {
-      if (!vegetation(world, c.other) || c.impulse_N_s.squaredNorm() == 0) continue;
-      std::vector<std::pair<double, uint32_t>> near;
-      for (uint32_t p = 0; p < state.positions_m.size(); ++p)
-        near.emplace_back((state.positions_m[p] - c.point_m).norm(), p);
-      const std::size_t k = std::min(kNearest, near.size());
-      std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
-      double total = 0;
-      for (std::size_t j = 0; j < k; ++j) total += 1.0 / (near[j].first + 0.05);
-      for (std::size_t j = 0; j < k; ++j)
-        inputs.impulses.push_back(
-            {near[j].second,
-             dc.settings.visual_impulse_scale * (1.0 / (near[j].first + 0.05)) / total * c.impulse_N_s});
-    }
-  }
 
   // The chassis's motion over ODE's step (its forces only: the body's reaction of the last step moved the
   // points with it) is deform's frame: the points feel the inertial load of ODE's acceleration of the
@@ -233,7 +227,7 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
     inputs.chassis.gravity_mps2 = to_vehicle * world.settings().gravity_mps2;
   }
 
-  dc.plastic_before_step_J = state.plastic_work_J;
+  dc.plastic_before_step_J = dc.body->state().plastic_work_J;
   dc.contact_loss_before_step_J = dc.contact_loss_J;
   if (!dc.metrics.impacted) dc.elastic_before_step_J = dc.elastic_after_step_J;
 }
@@ -347,9 +341,18 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
       const EntityRef& other = dc.touching[k];
       if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
         continue;  // another deformable car takes its share through its own body
-      const Eigen::Vector3d impulse = report.contact_impulse_per_obstacle_Ns[k];
+      // A free obstacle (deform moved it as a particle inside the substeps) takes the velocity change deform
+      // gave it, and goes where its push took it: minus the impulse it gave the body, less what holds it
+      // takes (a wall it is pinched against). ODE then carries it on.
+      const double w_other = dc.inputs.contact_inverse_mass_per_kg[k];
+      const Eigen::Vector3d impulse = w_other > 0
+                                          ? Eigen::Vector3d(-report.obstacle_velocity_change_mps[k] / w_other)
+                                          : report.contact_impulse_per_obstacle_Ns[k];
       if (impulse.squaredNorm() > 0 && impulse.allFinite())
         world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
+      const Eigen::Vector3d moved = report.obstacle_displacement_m[k];
+      if (w_other > 0 && moved.squaredNorm() > 0 && moved.allFinite())
+        world.shift(other, frame.orientation * moved);
     }
   }
   if (!crush && finite) updateGhost(dc);

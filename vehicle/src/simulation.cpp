@@ -61,10 +61,6 @@ bool crushable(const World& world, EntityRef e) {
   return e.kind == EntityRef::Kind::Car || crushesBody(world.obstacleKind(e.index));
 }
 
-bool vegetation(const World& world, EntityRef e) {
-  return e.kind == EntityRef::Kind::Obstacle && world.obstacleKind(e.index) == ObstacleKind::Vegetation;
-}
-
 // Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.
 bool enclosesWithMargin(const deform::ControlMesh& mesh, const Eigen::Vector3d& point, double margin_m) {
   for (const auto& t : mesh.triangles) {
@@ -104,8 +100,6 @@ void checkDeformationSettings(const DeformationSettings& s) {
           "must be finite and >= 0", s.crush_allowance_m);
   require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
           "must be finite and >= 0", s.inertial_scale);
-  require(std::isfinite(s.visual_impulse_scale) && s.visual_impulse_scale >= 0, "visual_impulse_scale",
-          "must be finite and >= 0", s.visual_impulse_scale);
 }
 
 Simulation::Simulation(const WorldSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}

@@ -24,7 +24,6 @@ double kineticEnergy(const Car& car);
 /// What crushes the body: another car, or an obstacle crushesBody (world.hpp) accepts.
 bool crushable(const World& world, EntityRef e);
 /// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
-bool vegetation(const World& world, EntityRef e);
 /// An obstacle standing on the ground (crush_coupling.cpp).
 bool standsOnGround(const ObstacleShape& shape);
 /// Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.

@@ -608,9 +608,25 @@ void World::applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, co
 }
 
 void World::shiftCar(CarId id, const Eigen::Vector3d& shift_m) {
-  dBodyID body = impl_->cars.at(id)->body_;
+  shift({EntityRef::Kind::Car, id}, shift_m);
+}
+
+void World::shift(EntityRef entity, const Eigen::Vector3d& shift_m) {
+  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
+                                                     : impl_->obstacles.at(entity.index).body;
+  if (body == nullptr) return;
+  if (entity.kind == EntityRef::Kind::Obstacle) dBodyEnable(body);
   const Eigen::Vector3d p = ode::vec(dBodyGetPosition(body)) + shift_m;
   dBodySetPosition(body, p.x(), p.y(), p.z());
+}
+
+double World::inverseMass_per_kg(EntityRef entity) const {
+  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
+                                                     : impl_->obstacles.at(entity.index).body;
+  if (body == nullptr) return 0.0;
+  dMass mass;
+  dBodyGetMass(body, &mass);
+  return mass.mass > 0 ? 1.0 / mass.mass : 0.0;
 }
 
 void World::step() {

@@ -155,18 +155,22 @@ inline double projectContact(Eigen::Vector3d& x, const Eigen::Vector3d& x_start,
 /// inside an obstacle, must come out to the plane through `surface_m` with unit `normal` (out of the
 /// obstacle): C = normal . (p - surface) >= 0. Projected as PBD over the corners weighted by inverse
 /// mass (Mueller et al. 2007, eq. 8 with grad_k C = bary_k normal), which moves p exactly onto the plane.
-/// Returns the depth corrected [m].
+/// A movable obstacle of inverse mass `w_obstacle` > 0 (grad C = -normal for it) shares the correction:
+/// its displacement is added to `obstacle_move`. Returns the depth corrected [m].
 inline double projectFaceContact(Eigen::Vector3d& x0, Eigen::Vector3d& x1, Eigen::Vector3d& x2,
                                  const double w[3], const Eigen::Vector3d& bary,
-                                 const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m) {
+                                 const Eigen::Vector3d& normal, const Eigen::Vector3d& surface_m,
+                                 double w_obstacle = 0, Eigen::Vector3d* obstacle_move = nullptr) {
   const double c = normal.dot(bary[0] * x0 + bary[1] * x1 + bary[2] * x2 - surface_m);
   if (c >= 0) return 0;
-  const double denominator = w[0] * bary[0] * bary[0] + w[1] * bary[1] * bary[1] + w[2] * bary[2] * bary[2];
+  const double denominator =
+      w[0] * bary[0] * bary[0] + w[1] * bary[1] * bary[1] + w[2] * bary[2] * bary[2] + w_obstacle;
   if (!(denominator > 0)) return 0;
   const double scale = -c / denominator;
   x0 += (scale * w[0] * bary[0]) * normal;
   x1 += (scale * w[1] * bary[1]) * normal;
   x2 += (scale * w[2] * bary[2]) * normal;
+  if (obstacle_move) *obstacle_move -= (scale * w_obstacle) * normal;
   return -c;
 }
 

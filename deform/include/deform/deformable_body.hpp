@@ -40,6 +40,13 @@ struct StepReport {
   Eigen::Vector3d contact_impulse_Ns{0, 0, 0};
   /// The same per entry of StepInputs::contacts, for the reaction on each obstacle [N s].
   std::vector<Eigen::Vector3d> contact_impulse_per_obstacle_Ns;
+  /// Per entry of StepInputs::contacts: how far a movable obstacle (StepInputs::contact_inverse_mass_per_kg)
+  /// ended the step from where its input velocity put it, by the body's push [m] (0 for an immovable one).
+  std::vector<Eigen::Vector3d> obstacle_displacement_m;
+  /// Per entry of StepInputs::contacts: a movable obstacle's velocity change by the body's push [m/s]. Times
+  /// its mass it is minus contact_impulse_per_obstacle_Ns, unless something holds it
+  /// (StepInputs::contact_held_normals): the holder takes the rest.
+  std::vector<Eigen::Vector3d> obstacle_velocity_change_mps;
   /// Energy the viscous damping took out of the points' motion relative to the core [J].
   double damping_loss_J = 0;
   /// Work the obstacles did on the points, sum of J . V over every contact correction (impulse J, the
@@ -263,7 +270,18 @@ class DeformableBody {
   std::vector<HeldPoint> held_;
   std::vector<uint32_t> near_cap_of_half_[2];  ///< capDeviation's scratch: each half's, in point order
   std::vector<ContactShape> placed_;           ///< the obstacles where they are in the current substep
-  std::vector<ShiftedSupport> shifted_;        ///< storage behind placed_'s support shapes (stable addresses)
+  /// Per obstacle, this step: its inverse mass [1/kg] (0: immovable), and for a movable one its
+  /// displacement off its input path at the substep's start [m], its velocity change [m/s], and the
+  /// displacement this substep's contact corrections gave it so far [m].
+  std::vector<double> obstacle_inverse_mass_;
+  std::vector<Eigen::Vector3d> obstacle_offset_m_, obstacle_dv_mps_, obstacle_shift_m_;
+  std::vector<std::vector<Eigen::Vector3d>> obstacle_held_;  ///< StepInputs::contact_held_normals, unit
+  /// What of the move `move_m` a movable obstacle may make now, held back by what holds it (it does not
+  /// go into a held normal's thing) [m].
+  Eigen::Vector3d heldMove(uint32_t shape, const Eigen::Vector3d& move_m) const;
+  /// `v` without its components into obstacle `shape`'s held normals.
+  Eigen::Vector3d heldBack(uint32_t shape, Eigen::Vector3d v) const;
+  std::vector<ShiftedSupport> shifted_;  ///< storage behind placed_'s support shapes (stable addresses)
   // The core inside a step: displacement and velocity relative to its kinematic path, its inverse mass.
   Eigen::Vector3d core_shift_m_{0, 0, 0}, core_velocity_mps_{0, 0, 0};
   double core_inverse_mass_per_kg_ = 0;

@@ -46,6 +46,20 @@ struct StepInputs {
   /// meet this body between its points and would otherwise pass into it; a post is better left to the
   /// points (it makes a narrow notch between them, as a pole does).
   std::vector<uint8_t> surface_contact;
+  /// Per entry of `contacts` (missing entries: 0, immovable): the obstacle's inverse mass [1/kg]. A free
+  /// obstacle (a pushed box, a tree) is a particle inside the substeps, as a finite core is: each contact
+  /// correction moves it back by its share (PBD's inverse-mass weights, Mueller et al. 2007, eq. 8), its
+  /// velocity changes with it, and the step reports how far it moved off its path
+  /// (StepReport::obstacle_displacement_m) and the momentum it took (minus contact_impulse_per_obstacle_Ns)
+  /// for the caller to hand to its rigid body. Its turn is not changed within the step. A light obstacle
+  /// taken as immovable inside the step gets the momentum that would stop the body's points, and is thrown
+  /// (a 10 kg box pinched between a car and a wall: 250 kJ of the obstacle's work from a 52 kJ impact).
+  std::vector<double> contact_inverse_mass_per_kg;
+  /// Per entry of `contacts` (missing entries: none): for a movable obstacle, the unit normals (vehicle
+  /// frame) of what holds it (the ground, a wall it rests against: its caller's contacts with immovable
+  /// things), out of them. The body cannot push it into them: pinched between the body and a wall, a box
+  /// gives way only along the wall, and the wall takes the rest of the push.
+  std::vector<std::vector<Eigen::Vector3d>> contact_held_normals;
   /// Coulomb friction coefficient between the control points and every obstacle [1]; 0 = frictionless.
   /// Off by default: on fine control meshes (thousands of points) pressed against a wall, position-level
   /// friction with one Gauss-Seidel iteration was seen to jitter (an open issue).

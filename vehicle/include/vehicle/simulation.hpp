@@ -93,10 +93,6 @@ struct DeformationSettings {
   /// Visual coupling only: scale of the chassis's inertial (fictitious) forces on the control points [-]
   /// (crush always uses 1, the shell's real inertia).
   double inertial_scale = 0.0;
-  /// Vegetation (either coupling): share of each contact impulse of ODE's rigid contact with a plant
-  /// handed to the 4 nearest control points [-] (no physical meaning yet; the visual coupling's dent
-  /// comes from its ghost, docs/CRASH_CALIBRATION.md, "Visual coupling: the ghost").
-  double visual_impulse_scale = 0.05;
   Coupling coupling = Coupling::Crush;
   /// Force-limited constraints (deform::SolverParams::yield_limited): no constraint carries more than its
   /// yield force, and a held point at its cap stops the chassis rigidly. Off: the solve carries whatever

@@ -47,12 +47,12 @@ enum class ObstacleKind : uint8_t {
 };
 
 /// Whether an obstacle of this kind crushes a car's deformable body (its soft hull detects it, deform
-/// dents the body against it, the backstop core is rigid against it): anything but the ground, ramps and
-/// vegetation (a light, thin tree is pushed over by the hull's rigid contact; between the control points
-/// it would otherwise pass into the car unresisted). Other cars always do. The one definition the world
+/// dents the body against it, the backstop core is rigid against it): anything but the ground and ramps.
+/// A free one (a box, a tree) is a particle inside deform's substeps, pushed by its mass
+/// (deform::StepInputs::contact_inverse_mass_per_kg). Other cars always do. The one definition the world
 /// and the crush coupling share.
 inline bool crushesBody(ObstacleKind kind) {
-  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp && kind != ObstacleKind::Vegetation;
+  return kind != ObstacleKind::Ground && kind != ObstacleKind::Ramp;
 }
 
 enum class PostShape : uint8_t { Cylinder, Capsule };
@@ -201,6 +201,11 @@ class World {
                     const Eigen::Vector3d& angular_impulse_Nms = Eigen::Vector3d::Zero());
   /// Moves a car's chassis by `shift_m` (world) [m], keeping its velocity and orientation.
   void shiftCar(CarId id, const Eigen::Vector3d& shift_m);
+  /// Moves a car's chassis or a free obstacle by `shift_m` (world) [m], keeping its velocity and
+  /// orientation; static obstacles and the ground stay. Wakes a sleeping obstacle.
+  void shift(EntityRef entity, const Eigen::Vector3d& shift_m);
+  /// 1 / mass of a car's chassis or a free obstacle [1/kg]; 0 for static obstacles and the ground.
+  double inverseMass_per_kg(EntityRef entity) const;
 
   /// One fixed step of 1 / physics_rate_hz: wheel forces of every car, collisions, ODE quick step.
   void step();
