@@ -63,7 +63,6 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     }
     if (largest == nullptr) break;
     const uint32_t shape = largest->shape;
-    // A movable obstacle gives way by its share (inverse masses), the core by the rest.
     // A movable obstacle gives way by its share (inverse masses), as far as what holds it lets it; the
     // core moves by the rest.
     const double w_obstacle = obstacle_inverse_mass_[shape];
