@@ -64,7 +64,7 @@ void Simulation::Impl::addApproaching(DeformableCar& dc) const {
   };
   for (ObstacleId o = 0; o < world.obstacleCount(); ++o) {
     const EntityRef other{EntityRef::Kind::Obstacle, o};
-    if (crushable(world, other))
+    if (crushable(world, other, dc.settings.coupling))
       consider(other, obstacle_boxes[o], velocityOf(other, core_world_m), angularVelocityOf(other));
   }
   // Another car is within reach only if its box comes within the growth below of this one's. That growth
@@ -107,7 +107,7 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   // the control points during this step.
   dc.touching.clear();
   for (const CarContact& c : contacts)
-    if (crushable(world, c.other) &&
+    if (crushable(world, c.other, dc.settings.coupling) &&
         std::find(dc.touching.begin(), dc.touching.end(), c.other) == dc.touching.end())
       dc.touching.push_back(c.other);
   dc.in_ode_contact = dc.touching.size();
@@ -254,7 +254,7 @@ void Simulation::Impl::advanceGhost(DeformableCar& dc) const {
   dc.ghost_in_ode_contact = false;
   dc.ghost_contact_normal.setZero();
   for (const CarContact& c : world.carContacts(dc.id))
-    if (crushable(world, c.other)) {
+    if (crushable(world, c.other, dc.settings.coupling)) {
       taken_Ns += c.impulse_N_s;
       dc.ghost_in_ode_contact = true;
       dc.ghost_contact_normal += c.normal;

@@ -21,9 +21,9 @@ namespace vehicle {
 
 /// Kinetic energy of the ODE chassis: translation plus rotation (its inertia in the body axes) [J].
 double kineticEnergy(const Car& car);
-/// What crushes the body: another car, or an obstacle crushesBody (world.hpp) accepts.
-bool crushable(const World& world, EntityRef e);
-/// Vegetation: rigid for the hull (knocked over by it), denting the body by its contact impulses.
+/// What crushes the body: another car, or an obstacle crushesBody (world.hpp) accepts; in the visual
+/// coupling not vegetation, which ODE's rigid hull knocks over.
+bool crushable(const World& world, EntityRef e, Coupling coupling);
 /// An obstacle standing on the ground (crush_coupling.cpp).
 bool standsOnGround(const ObstacleShape& shape);
 /// Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.

@@ -47,7 +47,8 @@ enum class ObstacleKind : uint8_t {
 };
 
 /// Whether an obstacle of this kind crushes a car's deformable body (its soft hull detects it, deform
-/// dents the body against it, the backstop core is rigid against it): anything but the ground and ramps.
+/// dents the body against it, the backstop core is rigid against it): anything but the ground and ramps
+/// (the visual coupling leaves vegetation to its rigid hull: vehicle/src/simulation.cpp, crushable).
 /// A free one (a box, a tree) is a particle inside deform's substeps, pushed by its mass
 /// (deform::StepInputs::contact_inverse_mass_per_kg). Other cars always do. The one definition the world
 /// and the crush coupling share.
