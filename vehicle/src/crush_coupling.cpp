@@ -337,22 +337,20 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
                        car.bodyPose().position_m, frame.orientation * moment);
     world.shiftCar(dc.id, frame.orientation * report.core_displacement_m);
     dc.step_crush_work_J = kinetic_before_J - kineticEnergy(car);
+    // A free obstacle (deform moved it as a particle inside the substeps, prepareCar) takes the velocity
+    // change deform gave it, and goes where its push took it: minus the impulse it gave the body, less what
+    // holds it takes (a wall it is pinched against). ODE then carries it on. Static obstacles and another
+    // deformable car (which takes its share through its own body) have no inverse mass here.
     for (std::size_t k = 0; k < dc.touching.size(); ++k) {  // one contact shape per touched entity
-      const EntityRef& other = dc.touching[k];
-      if (other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0)
-        continue;  // another deformable car takes its share through its own body
-      // A free obstacle (deform moved it as a particle inside the substeps) takes the velocity change deform
-      // gave it, and goes where its push took it: minus the impulse it gave the body, less what holds it
-      // takes (a wall it is pinched against). ODE then carries it on.
       const double w_other = dc.inputs.contact_inverse_mass_per_kg[k];
-      const Eigen::Vector3d impulse = w_other > 0
-                                          ? Eigen::Vector3d(-report.obstacle_velocity_change_mps[k] / w_other)
-                                          : report.contact_impulse_per_obstacle_Ns[k];
+      if (!(w_other > 0)) continue;
+      const EntityRef& other = dc.touching[k];
+      const Eigen::Vector3d impulse =
+          frame.orientation * Eigen::Vector3d(report.obstacle_velocity_change_mps[k] / w_other);
       if (impulse.squaredNorm() > 0 && impulse.allFinite())
-        world.applyImpulse(other, -(frame.orientation * impulse), interiorPoint(worldShapeOf(other)));
+        world.applyImpulse(other, impulse, interiorPoint(worldShapeOf(other)));
       const Eigen::Vector3d moved = report.obstacle_displacement_m[k];
-      if (w_other > 0 && moved.squaredNorm() > 0 && moved.allFinite())
-        world.shift(other, frame.orientation * moved);
+      if (moved.squaredNorm() > 0 && moved.allFinite()) world.shift(other, frame.orientation * moved);
     }
   }
   if (!crush && finite) updateGhost(dc);

@@ -221,6 +221,12 @@ struct World::Impl {
     return e.kind == EntityRef::Kind::Car || crushesBody(obstacles[e.index].kind);
   }
 
+  /// A car's chassis or an obstacle's ODE body (null for a static obstacle and the ground).
+  dBodyID bodyOf(EntityRef entity) const {
+    return entity.kind == EntityRef::Kind::Car ? cars.at(entity.index)->body_
+                                               : obstacles.at(entity.index).body;
+  }
+
   ObstacleId addObstacle(ObstacleEntry entry) {
     const auto id = static_cast<ObstacleId>(obstacles.size());
     dGeomSetData(entry.geom, ode::packEntity(kObstacleKind, id));
@@ -574,8 +580,7 @@ double World::crushAllowance(CarId id) const {
 void World::addForce(EntityRef entity, const Eigen::Vector3d& force_N, const Eigen::Vector3d& point_m) {
   if (!force_N.allFinite() || !point_m.allFinite())
     throw deform::InputError("addForce: the force and its point must be finite (ODE aborts on a NaN)");
-  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
-                                                     : impl_->obstacles.at(entity.index).body;
+  dBodyID body = impl_->bodyOf(entity);
   if (body == nullptr) return;
   dBodyEnable(body);
   dBodyAddForceAtPos(body, force_N.x(), force_N.y(), force_N.z(), point_m.x(), point_m.y(), point_m.z());
@@ -587,8 +592,7 @@ void World::applyImpulse(EntityRef entity, const Eigen::Vector3d& impulse_Ns, co
     throw deform::InputError(
         "applyImpulse: the impulse, its point and the angular impulse must be finite (ODE "
         "aborts on a NaN)");
-  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
-                                                     : impl_->obstacles.at(entity.index).body;
+  dBodyID body = impl_->bodyOf(entity);
   if (body == nullptr) return;
   dBodyEnable(body);
   dMass mass;
@@ -612,8 +616,7 @@ void World::shiftCar(CarId id, const Eigen::Vector3d& shift_m) {
 }
 
 void World::shift(EntityRef entity, const Eigen::Vector3d& shift_m) {
-  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
-                                                     : impl_->obstacles.at(entity.index).body;
+  dBodyID body = impl_->bodyOf(entity);
   if (body == nullptr) return;
   if (entity.kind == EntityRef::Kind::Obstacle) dBodyEnable(body);
   const Eigen::Vector3d p = ode::vec(dBodyGetPosition(body)) + shift_m;
@@ -621,8 +624,7 @@ void World::shift(EntityRef entity, const Eigen::Vector3d& shift_m) {
 }
 
 double World::inverseMass_per_kg(EntityRef entity) const {
-  dBodyID body = entity.kind == EntityRef::Kind::Car ? impl_->cars.at(entity.index)->body_
-                                                     : impl_->obstacles.at(entity.index).body;
+  dBodyID body = impl_->bodyOf(entity);
   if (body == nullptr) return 0.0;
   dMass mass;
   dBodyGetMass(body, &mass);

@@ -49,9 +49,9 @@ struct StepInputs {
   /// Per entry of `contacts` (missing entries: 0, immovable): the obstacle's inverse mass [1/kg]. A free
   /// obstacle (a pushed box, a tree) is a particle inside the substeps, as a finite core is: each contact
   /// correction moves it back by its share (PBD's inverse-mass weights, Mueller et al. 2007, eq. 8), its
-  /// velocity changes with it, and the step reports how far it moved off its path
-  /// (StepReport::obstacle_displacement_m) and the momentum it took (minus contact_impulse_per_obstacle_Ns)
-  /// for the caller to hand to its rigid body. Its turn is not changed within the step. A light obstacle
+  /// velocity changes with it, and the step reports how far it moved off its path and its velocity change
+  /// (StepReport::obstacle_displacement_m, obstacle_velocity_change_mps) for the caller to hand to its rigid
+  /// body. Its turn is not changed within the step. A light obstacle
   /// taken as immovable inside the step gets the momentum that would stop the body's points, and is thrown
   /// (a 10 kg box pinched between a car and a wall: 250 kJ of the obstacle's work from a 52 kJ impact).
   std::vector<double> contact_inverse_mass_per_kg;
