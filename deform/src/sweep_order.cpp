@@ -29,6 +29,24 @@ void appendWindowed(const std::vector<std::array<uint32_t, 2>>& pairs, const std
   }
 }
 
+/// Re-sorts order[begin ..) by dependency level, stably (sweepOrder's by_level). `level_of_point` is all
+/// zero on entry and on return.
+void byLevel(const std::vector<std::array<uint32_t, 2>>& pairs, std::size_t begin,
+             std::vector<uint32_t>& order, std::vector<uint32_t>& level_of_point) {
+  std::vector<std::pair<uint32_t, uint32_t>> levelled;  // (level, pair)
+  for (std::size_t j = begin; j < order.size(); ++j) {
+    const auto& [a, b] = pairs[order[j]];
+    const uint32_t level = std::max(level_of_point[a], level_of_point[b]);
+    level_of_point[a] = level_of_point[b] = level + 1;
+    levelled.push_back({level, order[j]});
+  }
+  for (std::size_t j = begin; j < order.size(); ++j)
+    level_of_point[pairs[order[j]][0]] = level_of_point[pairs[order[j]][1]] = 0;
+  std::stable_sort(levelled.begin(), levelled.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (std::size_t j = begin; j < order.size(); ++j) order[j] = levelled[j - begin].second;
+}
+
 }  // namespace
 
 std::vector<uint32_t> orderAlongLongestSide(const std::vector<Eigen::Vector3d>& points_m) {
@@ -55,7 +73,7 @@ std::vector<uint8_t> bodyHalves(const std::vector<Eigen::Vector3d>& points_m) {
 }
 
 SweepOrder sweepOrder(const std::vector<std::array<uint32_t, 2>>& pairs, const std::vector<uint8_t>& halves,
-                      std::size_t window) {
+                      std::size_t window, bool by_level) {
   window = std::clamp<std::size_t>(window, 1, 64);
   std::vector<uint32_t> parts[3];  // half 0, half 1, across
   for (uint32_t k = 0; k < pairs.size(); ++k) {
@@ -65,8 +83,11 @@ SweepOrder sweepOrder(const std::vector<std::array<uint32_t, 2>>& pairs, const s
   SweepOrder out;
   out.order.reserve(pairs.size());
   std::vector<uint64_t> taken_by(halves.size(), 0);
+  std::vector<uint32_t> level_of_point(halves.size(), 0);
   for (int part = 0; part < 3; ++part) {
+    const std::size_t begin = out.order.size();
     appendWindowed(pairs, parts[part], window, taken_by, out.order);
+    if (by_level) byLevel(pairs, begin, out.order, level_of_point);
     if (part < 2) out.half_end[static_cast<std::size_t>(part)] = static_cast<uint32_t>(out.order.size());
   }
   return out;

@@ -32,7 +32,14 @@ struct SweepOrder {
 /// Each part in input order from window to window (`window` consecutive pairs of the part), and within a
 /// window by a greedy colouring (first fit, in input order), so that consecutive pairs of one colour share
 /// no point. Deterministic.
+///
+/// `by_level`: then each part is re-sorted, stably, by dependency level (a pair's level is one more than
+/// the highest level of the pairs before it that share a point). Every pair keeps its place among the pairs
+/// sharing a point with it, so a Gauss-Seidel sweep gives the same positions to the bit; but the pairs of a
+/// level share no point, so the sweep's fours and eights are not only disjoint but independent of the ones
+/// just before them (a 4,000-point sedan's edges fall into 41 levels of 4 to 628), and do not wait for
+/// their stores.
 SweepOrder sweepOrder(const std::vector<std::array<uint32_t, 2>>& pairs, const std::vector<uint8_t>& halves,
-                      std::size_t window = kSweepWindow);
+                      std::size_t window = kSweepWindow, bool by_level = true);
 
 }  // namespace deform

@@ -1,5 +1,6 @@
 // The sweep's order (deform/src/sweep_order.hpp) and the two-thread sweep (SolverParams::threads): the
 // halves share no point, the order keeps every constraint, neighbours in the sweep rarely share a point,
+// the order by level gives the windowed order's bits,
 // and two threads give the bits of one.
 #include "fixtures.hpp"
 #include "support.hpp"
@@ -8,6 +9,8 @@
 #include <deform/builtin_meshes.hpp>
 #include <deform/control_mesh.hpp>
 #include <deform/deformable_body.hpp>
+#include <sweep_order.hpp>
+#include <sweep_wide.hpp>
 
 #include <algorithm>
 #include <random>
@@ -139,6 +142,80 @@ TEST_CASE("the sweep keeps every constraint, its halves share no point, and neig
   // only where a window's colour changes.
   CHECK(sharedNeighbours(mesh_order) > 0.3);
   CHECK(sharedNeighbours(edges) < 0.15);
+}
+
+TEST_CASE("the sweep by level gives the windowed sweep's positions to the bit, in independent eights",
+          "[dynamics]") {
+  const ControlMesh mesh = sedanControlMesh(1000);
+  std::vector<std::array<uint32_t, 2>> pairs;
+  for (const ControlEdge& e : mesh.edges) pairs.push_back({e.a, e.b});
+  const std::vector<uint8_t> halves = bodyHalves(mesh.points_m);
+  const SweepOrder windowed = sweepOrder(pairs, halves, kSweepWindow, false);
+  const SweepOrder levelled = sweepOrder(pairs, halves, kSweepWindow, true);
+  CHECK(levelled.half_end == windowed.half_end);
+  std::vector<uint32_t> sorted = levelled.order;
+  std::sort(sorted.begin(), sorted.end());
+  for (uint32_t k = 0; k < sorted.size(); ++k) REQUIRE(sorted[k] == k);
+
+  // Three Gauss-Seidel sweeps from the same shaken positions, one in each order.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Vector3d> start = mesh.points_m;
+  for (auto& p : start) p += 0.02 * Eigen::Vector3d(u(random), u(random), u(random));
+  std::vector<double> w(start.size());
+  for (double& wi : w) wi = 1 + 0.5 * u(random);
+  auto sweep = [&](const SweepOrder& order) {
+    std::vector<Eigen::Vector3d> x = start;
+    std::vector<double> lambda(pairs.size(), 0.0);
+    for (int pass = 0; pass < 3; ++pass)
+      for (const uint32_t k : order.order) {
+        const auto [a, b] = pairs[k];
+        const double rest = (mesh.points_m[a] - mesh.points_m[b]).norm();
+        projectDistance(x[a], x[b], w[a], w[b], rest, distanceFactors(w[a], w[b], 1e-7, 240.0 * 240.0),
+                        lambda[k], -5e-4, 5e-4);
+      }
+    return x;
+  };
+  const std::vector<Eigen::Vector3d> by_window = sweep(windowed), by_level = sweep(levelled);
+  CHECK(by_window != start);
+  CHECK(by_level == by_window);
+
+  // How many constraints the wide sweep takes eight at a time (disjointRuns) in each order.
+  auto inEights = [&](const SweepOrder& order) {
+    std::vector<uint32_t> interleaved;
+    for (const uint32_t k : order.order) interleaved.insert(interleaved.end(), {pairs[k][0], pairs[k][1]});
+    const std::vector<uint8_t> disjoint = disjointRuns(interleaved);
+    std::size_t eights = 0;
+    for (std::size_t k = 0; k < disjoint.size();)
+      if (k + 8 <= disjoint.size() && disjoint[k] == kDisjointEight) {
+        eights += 8;
+        k += 8;
+      } else {
+        ++k;
+      }
+    return static_cast<double>(eights) / static_cast<double>(disjoint.size());
+  };
+  // And how many of them share a point with one of the eight before them (whose stores they wait for).
+  auto waiting = [&](const SweepOrder& order) {
+    std::size_t waits = 0;
+    for (std::size_t j = 8; j < order.order.size(); ++j) {
+      const auto [a, b] = pairs[order.order[j]];
+      for (std::size_t back = j - 8; back < j - j % 8; ++back) {
+        const auto [c, d] = pairs[order.order[back]];
+        if (a == c || a == d || b == c || b == d) {
+          ++waits;
+          break;
+        }
+      }
+    }
+    return static_cast<double>(waits) / static_cast<double>(order.order.size());
+  };
+  WARN("1,000-point sedan's edges in eights: " << 100 * inEights(windowed) << " % by window, "
+                                               << 100 * inEights(levelled) << " % by level; waiting on the "
+                                               << "eight before: " << 100 * waiting(windowed) << " %, "
+                                               << 100 * waiting(levelled) << " %");
+  CHECK(inEights(levelled) > 0.9);
+  CHECK(waiting(levelled) < 0.5 * waiting(windowed));
 }
 
 TEST_CASE("control points are numbered along the body's longest side", "[dynamics]") {
