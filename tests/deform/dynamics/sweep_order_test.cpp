@@ -1,7 +1,6 @@
 // The sweep's order (deform/src/sweep_order.hpp) and the two-thread sweep (SolverParams::threads): the
 // halves share no point, the order keeps every constraint, neighbours in the sweep rarely share a point,
-// the order by level gives the windowed order's bits,
-// and two threads give the bits of one.
+// the order by level gives the windowed order's bits, and two threads give the bits of one.
 #include "fixtures.hpp"
 #include "support.hpp"
 
