@@ -34,10 +34,9 @@ Figure minorHitsFigure(const FigureOptions& o) {
   std::snprintf(
       caption, sizeof caption,
       "`sandbox run post_bumps --set vehicle.mesh=builtin:sedan?vertices=900000`: a %zu-vertex sedan with "
-      "%zu "
-      "control points (%s skin) after knocking over a small tree and a shrub (rigid for the hull, denting "
-      "the body by "
-      "their contact impulses) and nudging a 0.2 m steel bollard at 15 km/h; coloured by permanent "
+      "%zu control points (%s skin) after knocking over a small tree and a shrub (free obstacles that the "
+      "body pushes by their mass and that dent it by their contacts) and nudging a 0.2 m steel bollard at "
+      "15 km/h; coloured by permanent "
       "displacement (red %.3f m, blue none), residual crush %.3f m; the car went %.2f m into what it hit "
       "(the face contacts dent the surface between the control points).",
       car.dented.positions_m.size(), car.control_points, deform::skinMethodName(car.skin_method),
