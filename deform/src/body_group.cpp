@@ -54,6 +54,7 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
   }
   substeps = substepsNoLongerThan(dt_s_, substeps, longest_s);  // the bodies are in contact
   for (std::size_t i = 0; i < count; ++i) body(static_cast<uint32_t>(i)).beginStep(*inputs[i], dt_s_, true);
+  findShared(inputs);
   h_s_ = dt_s_ / static_cast<double>(substeps);
   for (DeformableBody* b : bodies_) {
     b->substeps_ = substeps;
@@ -67,22 +68,109 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
       state_[l].behind_s = static_cast<double>(substeps - k) * h_s_;
       findContacts(l);
     }
+    // A shared obstacle: every body pushes it from where the last pass left it, and it moves by the sum
+    // of their pushes (Jacobi, as the contacts between the bodies: Gauss-Seidel let the body that pushed
+    // last win, whichever car was listed last crushed 1.7 times the other with a box between them).
     for (uint32_t it = 0; it < iterations; ++it) {
-      for (DeformableBody* b : bodies_)
-        if (it < b->params_.iterations) b->iterate();
+      for (uint32_t i = 0; i < count; ++i)
+        if (it < bodies_[i]->params_.iterations) {
+          takeShift(i);
+          bodies_[i]->iterate();
+          addShift(i);
+        }
+      sumShifts();
       for (int pass = 0; pass < kContactPasses; ++pass) project();
     }
-    for (DeformableBody* b : bodies_) b->settleSubstep();
+    for (uint32_t i = 0; i < count; ++i) {
+      takeShift(i);
+      bodies_[i]->settleSubstep();
+      addShift(i);
+    }
+    sumShifts();
     for (std::size_t l = 0; l < links_.size(); ++l) account(l);
+    for (uint32_t i = 0; i < count; ++i) takeShift(i);
     for (DeformableBody* b : bodies_) b->endSubstep();
+    alignShared();
+    for (SharedObstacle& o : shared_) o.shift_m.setZero();
   }
   std::vector<StepReport> reports;
   for (DeformableBody* b : bodies_) reports.push_back(b->endStep());
+  // A shared obstacle's displacement and velocity change are reported once, by its first holder: the
+  // caller hands each report's to the obstacle.
+  for (const SharedObstacle& o : shared_)
+    for (std::size_t h = 1; h < o.holders.size(); ++h) {
+      const auto [i, k] = o.holders[h];
+      reports[i].obstacle_displacement_m[k].setZero();
+      reports[i].obstacle_velocity_change_mps[k].setZero();
+    }
   if (link_reports) {
     link_reports->clear();
     for (const LinkState& s : state_) link_reports->push_back(s.report);
   }
   return reports;
+}
+
+void BodyGroup::findShared(const std::vector<const StepInputs*>& inputs) {
+  shared_.clear();
+  to_world_.clear();
+  std::vector<std::pair<uint64_t, std::pair<uint32_t, uint32_t>>> keyed;  // (key, (body, contact))
+  for (uint32_t i = 0; i < bodies_.size(); ++i) {
+    const StepInputs& in = *inputs[i];
+    to_world_.push_back(in.frame_to_world);
+    for (uint32_t k = 0; k < in.contact_keys.size() && k < in.contacts.size(); ++k)
+      if (in.contact_keys[k] != 0 && k < in.contact_inverse_mass_per_kg.size() &&
+          in.contact_inverse_mass_per_kg[k] > 0)
+        keyed.push_back({in.contact_keys[k], {i, k}});
+  }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (std::size_t j = 0; j < keyed.size();) {
+    std::size_t end = j + 1;
+    while (end < keyed.size() && keyed[end].first == keyed[j].first) ++end;
+    if (end - j > 1) {
+      SharedObstacle o;
+      for (std::size_t h = j; h < end; ++h) o.holders.push_back(keyed[h].second);
+      shared_.push_back(std::move(o));
+    }
+    j = end;
+  }
+}
+
+void BodyGroup::takeShift(uint32_t i) {
+  for (const SharedObstacle& o : shared_)
+    for (const auto& [b, k] : o.holders)
+      if (b == i) bodies_[i]->obstacle_shift_m_[k] = to_world_[i].transpose() * o.shift_m;
+}
+
+void BodyGroup::addShift(uint32_t i) {
+  for (SharedObstacle& o : shared_)
+    for (const auto& [b, k] : o.holders)
+      if (b == i) o.pushes_m += to_world_[i] * bodies_[i]->obstacle_shift_m_[k] - o.shift_m;
+}
+
+void BodyGroup::sumShifts() {
+  for (SharedObstacle& o : shared_) {
+    // Each push was held back by what holds the obstacle; their sum is too (the first holder's normals,
+    // every holder's in its own frame).
+    const auto [first, k] = o.holders.front();
+    DeformableBody& f = *bodies_[first];
+    f.obstacle_shift_m_[k] = to_world_[first].transpose() * o.shift_m;
+    o.shift_m += to_world_[first] * f.heldMove(k, to_world_[first].transpose() * o.pushes_m);
+    o.pushes_m.setZero();
+  }
+}
+
+void BodyGroup::alignShared() {
+  for (const SharedObstacle& o : shared_) {
+    const auto [first, first_k] = o.holders.front();
+    const Eigen::Vector3d offset_m = to_world_[first] * bodies_[first]->obstacle_offset_m_[first_k];
+    const Eigen::Vector3d dv_mps = to_world_[first] * bodies_[first]->obstacle_dv_mps_[first_k];
+    for (std::size_t h = 1; h < o.holders.size(); ++h) {
+      const auto [b, k] = o.holders[h];
+      bodies_[b]->obstacle_offset_m_[k] = to_world_[b].transpose() * offset_m;
+      bodies_[b]->obstacle_dv_mps_[k] = to_world_[b].transpose() * dv_mps;
+    }
+  }
 }
 
 void BodyGroup::project() {

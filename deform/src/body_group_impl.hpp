@@ -78,6 +78,25 @@ class BodyGroup {
   static double denominatorOf(const Contact& c, const DeformableBody& pb, const DeformableBody& tb);
   void account(std::size_t l);
 
+  /// A movable obstacle that several bodies of the group touch (StepInputs::contact_keys): each body's
+  /// entry (body, its contact index), and this substep's move so far in the common frame [m].
+  struct SharedObstacle {
+    std::vector<std::pair<uint32_t, uint32_t>> holders;
+    Eigen::Vector3d shift_m{0, 0, 0};   ///< this substep's move so far
+    Eigen::Vector3d pushes_m{0, 0, 0};  ///< the pushes of this pass's bodies, not yet added
+  };
+  void findShared(const std::vector<const StepInputs*>& inputs);
+  /// Body `i`'s copy of the shared obstacles' move this substep from the common one; its push in this pass
+  /// (what its copy moved) added to the pass's pushes; the pass's pushes added to the common move.
+  void takeShift(uint32_t i);
+  void addShift(uint32_t i);
+  void sumShifts();
+  /// Every holder's displacement and velocity change as the first holder's (the same up to the rounding of
+  /// the frames' turns), at the end of a substep.
+  void alignShared();
+  std::vector<SharedObstacle> shared_;
+  std::vector<Eigen::Matrix3d> to_world_;  ///< per body: StepInputs::frame_to_world
+
   const std::vector<DeformableBody*>& bodies_;
   const std::vector<BodyLink>& links_;
   double dt_s_;

@@ -178,6 +178,13 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   for (std::size_t k = 0; k < inputs.contact_inverse_mass_per_kg.size(); ++k)
     if (!std::isfinite(inputs.contact_inverse_mass_per_kg[k]) || inputs.contact_inverse_mass_per_kg[k] < 0)
       throw InputError("contact_inverse_mass_per_kg[" + std::to_string(k) + "]: must be finite and >= 0");
+  {
+    // A rotation: orthonormal within rounding, determinant +1 (the obstacles' moves are turned by it).
+    const Eigen::Matrix3d& r = inputs.frame_to_world;
+    if (!r.allFinite() || !((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6) ||
+        !(r.determinant() > 0))
+      throw InputError("frame_to_world: not a rotation matrix");
+  }
   if (std::isnan(inputs.core_mass_kg) || !(inputs.core_mass_kg > 0))
     throw InputError("core_mass_kg: must be > 0 (infinite: a kinematic core)");
   if (!std::isfinite(inputs.contact_friction) || inputs.contact_friction < 0)

@@ -19,12 +19,27 @@ std::vector<std::vector<std::size_t>> Simulation::Impl::bodyGroups() const {
     while (root[i] != i) i = root[i] = root[root[i]];
     return i;
   };
+  auto join = [&](std::size_t i, std::size_t j) {
+    const std::size_t ri = find(i), rj = find(j);
+    if (ri != rj) root[std::max(ri, rj)] = std::min(ri, rj);  // the root is the group's first car
+  };
   for (std::size_t i = 0; i < n; ++i)
-    for (const CarId other : cars[i]->partners) {
-      const std::size_t j = static_cast<std::size_t>(index_of[other]);
-      const std::size_t ri = find(i), rj = find(j);
-      if (ri != rj) root[std::max(ri, rj)] = std::min(ri, rj);  // the root is the group's first car
+    for (const CarId other : cars[i]->partners) join(i, static_cast<std::size_t>(index_of[other]));
+  // Cars that push the same free obstacle (a box between them): deform shares it within the substeps
+  // (StepInputs::contact_keys), so they are stepped as one too. The first car touching each obstacle.
+  std::vector<std::pair<uint64_t, std::size_t>> first_pusher;
+  for (std::size_t i = 0; i < n; ++i) {
+    const deform::StepInputs& in = cars[i]->inputs;
+    for (std::size_t k = 0; k < in.contact_keys.size(); ++k) {
+      if (in.contact_keys[k] == 0) continue;
+      const auto known = std::find_if(first_pusher.begin(), first_pusher.end(),
+                                      [&](const auto& f) { return f.first == in.contact_keys[k]; });
+      if (known == first_pusher.end())
+        first_pusher.push_back({in.contact_keys[k], i});
+      else
+        join(known->second, i);
     }
+  }
   std::vector<std::vector<std::size_t>> groups;
   std::vector<std::size_t> group_of(n, 0);
   for (std::size_t i = 0; i < n; ++i) {

@@ -193,6 +193,7 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
         other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0;
     const double w_other = crush && !deformable_car ? world.inverseMass_per_kg(other) : 0.0;
     inputs.contact_inverse_mass_per_kg.push_back(w_other);
+    inputs.contact_keys.push_back(w_other > 0 ? freeObstacleKey(other) : 0);
     // What holds it (ODE's contacts with the ground and static things this step), out of them.
     std::vector<Eigen::Vector3d> held;
     if (w_other > 0)
@@ -205,6 +206,7 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   }
   inputs.contacts = dc.shapes.shapes();
   inputs.surface_contact = dc.shapes.surfaceFlags();
+  inputs.frame_to_world = frame.orientation.toRotationMatrix();
   // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
   // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
   if (crush) inputs.core_mass_kg = car.chassisMass_kg();

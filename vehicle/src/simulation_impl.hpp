@@ -24,6 +24,10 @@ double kineticEnergy(const Car& car);
 /// What crushes the body: another car, or an obstacle crushesBody (world.hpp) accepts; in the visual
 /// coupling not vegetation, which ODE's rigid hull knocks over.
 bool crushable(const World& world, EntityRef e, Coupling coupling);
+/// deform's key of a free obstacle (StepInputs::contact_keys): one per entity, never 0.
+inline uint64_t freeObstacleKey(EntityRef e) {
+  return (uint64_t{e.kind == EntityRef::Kind::Car ? 2u : 1u} << 32) | e.index;
+}
 /// An obstacle standing on the ground (crush_coupling.cpp).
 bool standsOnGround(const ObstacleShape& shape);
 /// Whether `point` lies inside the closed outward-wound surface `mesh`, at least `margin_m` from every face.
@@ -127,8 +131,8 @@ struct Simulation::Impl {
   int threads = 1;       ///< for the cars' deformation steps (Simulation::setThreads)
 
   /// The cars (indices into cars, prepared) in groups whose bodies step as one: a car with its partners
-  /// and theirs, each group in the cars' order, the groups in the order of their first car; a car with no
-  /// partner alone (car_group.cpp).
+  /// and theirs, and the cars pushing the same free obstacle, each group in the cars' order, the groups in
+  /// the order of their first car; a car with no partner alone (car_group.cpp).
   std::vector<std::vector<std::size_t>> bodyGroups() const;
   /// This step's boxes in the world, ungrown (updateBoxes, after ODE's step and the cars' snapshots):
   /// per CarId its control points (a deformable car) or hull, per ObstacleId its shape (the ground's is

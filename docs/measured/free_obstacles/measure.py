@@ -12,6 +12,8 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = [("box_free", m) for m in (10, 100)] + [("box_pinch", m) for m in (10, 100, 1000)] + \
         [("box_tight", m) for m in (10, 100)]
+# Two cars pinching one box: each car's terms (west, then east).
+TWO_CAR_CASES = [("two_pinch", m) for m in (10, 100, 1000)]
 
 
 def run(sandbox, scene, mass_kg):
@@ -20,10 +22,11 @@ def run(sandbox, scene, mass_kg):
                         "obstacles[0].mass_kg=%g" % mass_kg, "--out", out],
                        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         summary = json.load(open(os.path.join(out, "summary.json")))
-    e = summary["energy"]
-    return "%.1f | %.1f | %.1f | %+.1f %%" % (e["plastic_work_J"] / 1e3, e["obstacle_work_J"] / 1e3,
-                                              e["contact_loss_J"] / 1e3,
-                                              100 * e["balance_error_J"] / e["kinetic_initial_J"])
+    energies = [car["energy"] for car in summary["cars"]] if "cars" in summary else [summary["energy"]]
+    return " / ".join("%.1f | %.1f | %.1f | %+.1f %%" % (e["plastic_work_J"] / 1e3, e["obstacle_work_J"] / 1e3,
+                                                       e["contact_loss_J"] / 1e3,
+                                                       100 * e["balance_error_J"] / e["kinetic_initial_J"])
+                      for e in energies)
 
 
 def main():
@@ -35,6 +38,16 @@ def main():
     print("|" + "---|" * (2 + 4 * len(names)))
     for scene, mass in CASES:
         print("| %s | %g | %s |" % (scene, mass, " | ".join(run(b, scene, mass) for b in binaries)))
+    print()
+    print("Two cars (west / east):")
+    print()
+    print(head)
+    print("|" + "---|" * (2 + 4 * len(names)))
+    for scene, mass in TWO_CAR_CASES:
+        cells = [run(b, scene, mass).split(" / ") for b in binaries]
+        print("| %s | %g | %s |" % (scene, mass, " | ".join(
+            " | ".join("%s / %s" % (w, e) for w, e in zip(c[0].split(" | "), c[1].split(" | ")))
+            for c in cells)))
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@
 #include <deform/deformable_body.hpp>
 #include <deform/error.hpp>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -118,4 +120,12 @@ TEST_CASE("Bad movable-obstacle inputs are refused naming the field", "[dynamics
   CHECK_THROWS_WITH(body.step(inputs, 0.002), Catch::Contains("contact_held_normals[0]"));
   inputs.contact_held_normals = {{Eigen::Vector3d(std::nan(""), 0, 1)}};
   CHECK_THROWS_WITH(body.step(inputs, 0.002), Catch::Contains("contact_held_normals[0]"));
+  inputs.contact_held_normals.clear();
+  // The frame a shared obstacle's moves are turned by: a rotation, not a scale or a mirror.
+  inputs.frame_to_world = 2.0 * Eigen::Matrix3d::Identity();
+  CHECK_THROWS_WITH(body.step(inputs, 0.002), Catch::Contains("frame_to_world"));
+  inputs.frame_to_world = Eigen::Vector3d(1, 1, -1).asDiagonal();
+  CHECK_THROWS_WITH(body.step(inputs, 0.002), Catch::Contains("frame_to_world"));
+  inputs.frame_to_world = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  CHECK_NOTHROW(body.step(inputs, 0.002));
 }
