@@ -411,31 +411,35 @@ TEST_CASE("Crush: a light free box is knocked ahead, its dent within the energy 
   CHECK(box_travel.x() > 2.0);  // knocked along the road, not run over
 }
 
-TEST_CASE("Crush: a light box pushed into a wall and pinched there is not thrown between them", "[crush]") {
-  // The car meets a 10 kg box 1.2 m before the wall and pushes it there. Against the wall the box is held
-  // (its ODE contacts): the body cannot push it in, and the wall takes the push through it. Taken as
-  // immovable inside the step it was thrown between the two: 108 kJ of plastic work from a 52 kJ impact,
-  // 153 kJ of work by the box's motion, 26 kJ unexplained. Measured now: 55.8 kJ, 18.9 kJ and 5.3 kJ: the
-  // box still does work it should not (ODE pushes it out of the wall at its correcting velocity), which
-  // the bounds below leave room for (docs/CRASH_CALIBRATION.md, "Free obstacles in the substeps").
-  Simulation sim;
-  CarStart start;
-  start.speed_mps = 30 * kKmh;
-  const CarId id = sim.addDeformableCar(sedan(), {}, start, {});
-  const double front = frontOf(sim, id);
-  sim.world().addConvexMesh(deform::makeBox({0.5, 0.5, 0.8}, 100),
-                            Pose{{front + 0.5 + 0.25, 0.2, 0.4}, Eigen::Quaterniond::Identity()}, 10.0);
-  sim.world().addWall(Pose{{front + 0.5 + 0.5 + 1.2 + 0.3, 0, 0.8}, Eigen::Quaterniond::Identity()},
-                      {0.6, 5, 1.6});
-  sim.run(1.2);
-  const CrashMetrics m = sim.metrics(id);
-  const EnergyTerms& e = m.energy;
-  INFO("plastic " << e.plastic_work_J << " J, the box's work " << e.obstacle_work_J << " J, unexplained "
-                  << e.balance_error_J << " J of " << e.kinetic_initial_J << " J");
-  CHECK_FALSE(m.diverged);
-  CHECK(e.plastic_work_J <= 1.25 * e.kinetic_initial_J);
-  CHECK(std::abs(e.balance_error_J) <= 0.15 * e.kinetic_initial_J);
-  CHECK(e.obstacle_work_J <= 0.5 * e.kinetic_initial_J);
+TEST_CASE("Crush: a box pushed into a wall and pinched there is not thrown between them", "[crush]") {
+  // The car meets a box 1.2 m before the wall and pushes it there. Against the wall the box is held (its
+  // ODE contacts): the body cannot push it in, and the wall takes the push through it. A 10 kg box taken
+  // as immovable inside the step was thrown between the two: 108 kJ of plastic work from a 52 kJ impact,
+  // 153 kJ of work by the box's motion, 26 kJ unexplained. Inside the substeps but pushed out of the wall
+  // by ODE at its full correcting velocity (the body had pushed it in within the step before the contact
+  // existed): 55.8 kJ, 18.9 kJ and +10 %. With that contact corrected gently (World's contacts between a
+  // free obstacle and static things), measured 44.2 kJ, -0.2 kJ and +2.4 % at 10 kg.
+  for (const double box_kg : {10.0, 1000.0}) {
+    Simulation sim;
+    CarStart start;
+    start.speed_mps = 30 * kKmh;
+    const CarId id = sim.addDeformableCar(sedan(), {}, start, {});
+    const double front = frontOf(sim, id);
+    sim.world().addConvexMesh(deform::makeBox({0.5, 0.5, 0.8}, 100),
+                              Pose{{front + 0.5 + 0.25, 0.2, 0.4}, Eigen::Quaterniond::Identity()}, box_kg);
+    sim.world().addWall(Pose{{front + 0.5 + 0.5 + 1.2 + 0.3, 0, 0.8}, Eigen::Quaterniond::Identity()},
+                        {0.6, 5, 1.6});
+    sim.run(1.2);
+    const CrashMetrics m = sim.metrics(id);
+    const EnergyTerms& e = m.energy;
+    INFO(box_kg << " kg: plastic " << e.plastic_work_J << " J, the box's work " << e.obstacle_work_J
+                << " J, unexplained " << e.balance_error_J << " J of " << e.kinetic_initial_J << " J");
+    CHECK_FALSE(m.diverged);
+    CHECK(e.plastic_work_J > 0.4 * e.kinetic_initial_J);
+    CHECK(e.plastic_work_J <= e.kinetic_initial_J);
+    CHECK(std::abs(e.balance_error_J) <= 0.06 * e.kinetic_initial_J);
+    CHECK(e.obstacle_work_J <= 0.1 * e.kinetic_initial_J);
+  }
 }
 
 TEST_CASE("Crush: a box pinched between two cars gives way to both pushes at once", "[crush]") {

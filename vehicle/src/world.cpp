@@ -193,9 +193,15 @@ struct World::Impl {
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
       c.surface.mu = mu;
       // A crush backstop corrects its overlap gently: the crushed structure in front of it does not
-      // spring back, so a stiff push-out would throw the car back.
+      // spring back, so a stiff push-out would throw the car back. So does a free obstacle against a static
+      // thing (a box against a wall or the ground): a car's body may have pushed it in within the step
+      // before this contact existed (deform holds it only by the contacts it is told of), and pushed out at
+      // up to the correcting velocity it was thrown back at the car (a 1000 kg box pinched against a wall
+      // at 30 km/h: +12.7 % of the impact energy unexplained; +10.1 % with only the wall's contact gentle,
+      // +3.8 % with the ground's too, where the car that rode onto the box pushed it down).
       const bool core = r1 == GeomRole::Core || r2 == GeomRole::Core;
-      c.surface.soft_erp = core ? 0.1 * self->settings.contact_erp : self->settings.contact_erp;
+      const bool gentle = core || self->freeAgainstStatic(g1, g2);
+      c.surface.soft_erp = gentle ? 0.1 * self->settings.contact_erp : self->settings.contact_erp;
       c.surface.soft_cfm = self->settings.contact_cfm;
       dJointID joint = dJointCreateContact(self->world, self->contact_joints, &c);
       dJointAttach(joint, b1, b2);
@@ -205,6 +211,15 @@ struct World::Impl {
       self->contacts.push_back({entityOf(g1), entityOf(g2), ode::vec(c.geom.pos), ode::vec(c.geom.normal),
                                 c.geom.depth, Eigen::Vector3d::Zero(), true});
     }
+  }
+
+  /// A free obstacle (an obstacle with an ODE body) against a static obstacle or the ground.
+  static bool freeAgainstStatic(dGeomID g1, dGeomID g2) {
+    const dGeomID moving = dGeomGetBody(g1) != nullptr ? g1 : g2, fixed = moving == g1 ? g2 : g1;
+    if (dGeomGetBody(fixed) != nullptr) return false;
+    uint32_t kind = 0, index = 0, fixed_kind = 0, fixed_index = 0;
+    return ode::unpackEntity(dGeomGetData(moving), kind, index) && kind == kObstacleKind &&
+           ode::unpackEntity(dGeomGetData(fixed), fixed_kind, fixed_index) && fixed_kind == kObstacleKind;
   }
 
   enum class GeomRole { Plain, SoftHull, Core };
