@@ -426,6 +426,18 @@ void applyOverride(json& document, const Override& override) {
     parts.push_back(part);
   }
   if (parts.empty()) throw deform::InputError("--set: empty key path");
+  // The scene's cars are under one of the two keys: a --set for the other would add it, and the scene
+  // would then be refused for having both, with no word about the --set.
+  if (document.is_object()) {
+    if (parts[0] == "vehicle" && !document.contains("vehicle") && document.contains("vehicles"))
+      throw deform::InputError(
+          "--set " + override.path + ": this scene lists its cars under vehicles: set vehicles[0]." +
+          (parts.size() > 1 ? override.path.substr(override.path.find('.') + 1) : "...") +
+          " (and the same for each car)");
+    if (parts[0] == "vehicles" && !document.contains("vehicles") && document.contains("vehicle"))
+      throw deform::InputError("--set " + override.path +
+                               ": this scene has one car, under vehicle: set vehicle.... instead");
+  }
   json value;
   try {
     value = parseRefusingDuplicates(override.value, "--set " + override.path);

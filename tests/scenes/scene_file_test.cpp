@@ -228,6 +228,16 @@ TEST_CASE("overrides (--set) change any key and are checked as strictly as the f
   CHECK_THROWS_WITH(
       scenes::loadScene("wall_crash", {scenes::parseOverride("vehicle.start.sped=1")}),
       Catch::Contains("wall_crash.json: vehicle.start.sped: unknown key") && Catch::Contains("--set"));
+  // A car key under the wrong one of vehicle / vehicles says which to use.
+  CHECK_THROWS_WITH(
+      scenes::loadScene("car_to_car", {scenes::parseOverride("vehicle.deformation.control_points=500")}),
+      Catch::Contains("--set vehicle.deformation.control_points") &&
+          Catch::Contains("vehicles[0].deformation.control_points"));
+  CHECK_THROWS_WITH(scenes::loadScene("wall_crash", {scenes::parseOverride("vehicles[0].mass_kg=900")}),
+                    Catch::Contains("--set vehicles[0].mass_kg") && Catch::Contains("under vehicle"));
+  CHECK(scenes::loadScene("car_to_car", {scenes::parseOverride("vehicles[1].deformation.control_points=120")})
+            .vehicles[1]
+            .deformation.settings.control_points == 120);
 }
 
 TEST_CASE("every shipped scene parses and is found by name", "[scenes]") {
