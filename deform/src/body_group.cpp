@@ -69,8 +69,9 @@ std::vector<StepReport> BodyGroup::step(const std::vector<const StepInputs*>& in
       findContacts(l);
     }
     // A shared obstacle: every body pushes it from where the last pass left it, and it moves by the sum
-    // of their pushes (Jacobi, as the contacts between the bodies: Gauss-Seidel let the body that pushed
-    // last win, whichever car was listed last crushed 1.7 times the other with a box between them).
+    // of their pushes (Jacobi, as the contacts between the bodies). One body after the other made the
+    // split depend on the order the cars are listed in: two sedans pinching a box head-on, 21.4 / 20.5 kJ
+    // of plastic work, and 0.5-0.7 kJ moved between them with the order swapped; so, the same either way.
     for (uint32_t it = 0; it < iterations; ++it) {
       for (uint32_t i = 0; i < count; ++i)
         if (it < bodies_[i]->params_.iterations) {
