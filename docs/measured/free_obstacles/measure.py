@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Runs the free-obstacle scenes with one or two sandbox binaries and prints the energy terms as a table.
+"""Runs the free-obstacle scenes with one or two sandbox binaries and prints the energy terms as tables: one
+car (box_free, box_pinch, box_tight), then two cars pinching one box (two_pinch, west / east).
 
 Usage: measure.py SANDBOX [SANDBOX_BEFORE] > free_obstacles.md
 (docs/CRASH_CALIBRATION.md, "Free obstacles in the substeps")."""
