@@ -358,12 +358,10 @@ void DeformableBody::beginSubstep(uint32_t k) {
   const StepInputs& inputs = *inputs_;
   StepReport& report = report_;
   const double h = h_s_;
-  // A movable obstacle goes on at its changed velocity (its prediction, as the core's).
+  // A movable obstacle goes on at its changed velocity (its prediction, as the core's); its shift is zero
+  // here (beginStep, endSubstep).
   for (std::size_t j = 0; j < obstacle_inverse_mass_.size(); ++j)
-    if (obstacle_inverse_mass_[j] > 0) {
-      obstacle_offset_m_[j] += h * obstacle_dv_mps_[j];
-      obstacle_shift_m_[j].setZero();
-    }
+    if (obstacle_inverse_mass_[j] > 0) obstacle_offset_m_[j] += h * obstacle_dv_mps_[j];
   placeObstacles(inputs, static_cast<double>(substeps_ - k) * h);
   const std::size_t n = settings.pointCount();
   auto& x = state_.positions_m;

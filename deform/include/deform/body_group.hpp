@@ -46,6 +46,10 @@ struct LinkReport {
 /// body's surface as the obstacle, its velocity relative to this body's frame), contact_work_J,
 /// contact_loss_J and contact_points. The bodies share the largest substep count among them and sweep
 /// the largest iteration count (a body with fewer stops sweeping its own constraints after its count).
+/// A movable obstacle several bodies hold under one StepInputs::contact_keys entry is pushed by all of them
+/// within each substep (by the sum of their pushes); its obstacle_displacement_m and
+/// obstacle_velocity_change_mps are reported by the first body holding it only (zero in the others), so the
+/// caller moves it once.
 /// Throws InputError naming the link and field for a bad link, and as DeformableBody::step for bad inputs.
 std::vector<StepReport> stepGroup(const std::vector<DeformableBody*>& bodies,
                                   const std::vector<const StepInputs*>& inputs,
