@@ -109,6 +109,8 @@ class BodyGroup {
   std::vector<double> best_distance2_;
   std::vector<uint32_t> best_triangle_;
   std::vector<Eigen::Vector3d> best_bary_, face_normal_, vertex_normal_;
+  std::vector<uint8_t> needed_face_, needed_corner_;  ///< whose pseudo-normals a sample can meet
+  std::vector<double> cell_m_;                        ///< per body: its grid's cell size [m]
   // Scratch for project.
   std::vector<std::vector<double>> counts_;  ///< per body, per point: the contacts it is in this pass
   std::vector<std::vector<Eigen::Vector3d>> corrections_;  ///< per link, per contact (zero: it does not act)
