@@ -159,6 +159,7 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
   const auto& x = state_.positions_m;
   uint32_t found = 0;
   Penetration p;
+  const bool lipschitz = distanceIsLipschitz(shape);
   // A face point found inside may linger as a control point does (lingeringDepth): where it began the
   // substep, carried with the obstacle, is its corners' start blended.
   auto push = [&](const std::array<uint32_t, 3>& t, const Eigen::Vector3d& bary,
@@ -188,6 +189,12 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
     if (!std::holds_alternative<ConvexSupportShape>(shape) &&
         !penetration(shape, g, p, reach + params_.contact_margin_m))
       continue;
+    // The centroid's distance outside the obstacle, where the shape's reported distance is a true one
+    // (changes by at most a point's move, distanceIsLipschitz): a sample further from the centroid than that
+    // distance less the margin is surely not within it, and needs no test (the same contacts: 1e-9 m to
+    // spare).
+    const double centroid_gap_m =
+        lipschitz && p.depth_m < 0 ? -p.depth_m - params_.contact_margin_m - 1e-9 : 0;
     // The obstacle's point deepest into the body across this face (its support point along the inward
     // normal): when it lies behind the face and over it, the obstacle has poked through between the
     // corners, however thin it is (a post narrower than the sample spacing is still met). The samples
@@ -222,6 +229,7 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
         const Eigen::Vector3d bary(static_cast<double>(i) / k, static_cast<double>(j) / k,
                                    static_cast<double>(k - i - j) / k);
         const Eigen::Vector3d q = bary[0] * a + bary[1] * b + bary[2] * c;
+        if (centroid_gap_m > 0 && (q - g).squaredNorm() < centroid_gap_m * centroid_gap_m) continue;
         // Within the contact margin, as the control points: a sample just outside gets a contact that acts
         // only once violated, so the corrections of this substep cannot leave it inside unseen, to be
         // thrown out at the next one with the speed of its depth (a pole at 2000 points: -5.8 kJ of

@@ -166,6 +166,15 @@ void requireNonNegative(double value, const std::string& field) {
 
 }  // namespace
 
+bool distanceIsLipschitz(const ContactShape& shape) {
+  if (std::holds_alternative<SphereShape>(shape) || std::holds_alternative<CapsuleShape>(shape) ||
+      std::holds_alternative<CylinderShape>(shape))
+    return true;
+  if (const auto* box = std::get_if<BoxShape>(&shape))
+    return (box->axes.transpose() * box->axes - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-9;
+  return false;
+}
+
 bool penetration(const ContactShape& shape, const Eigen::Vector3d& point_m, Penetration& out,
                  double margin_m) {
   return std::visit([&](const auto& s) { return inside(s, point_m, margin_m, out); }, shape);

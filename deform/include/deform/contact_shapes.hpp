@@ -125,6 +125,12 @@ void bisectSurface(const ContactShape& shape, Eigen::Vector3d& outside_m, Eigen:
 /// which has none (it is unbounded); the direction need not be unit.
 bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m);
 
+/// True when penetration()'s depth for `shape` is minus the Euclidean distance outside it, so that it
+/// changes by at most the distance a point moves: a sphere, a capsule, a cylinder (swept or not), and a
+/// box whose axes are orthonormal within 1e-9 (its depth outside is the largest distance beyond a face
+/// pair, which is no more than the distance and moves no faster). False for a half-space (unbounded,
+/// tested otherwise) and a support shape (MPR's depth).
+bool distanceIsLipschitz(const ContactShape& shape);
 /// A sphere holding all of `shape` (centre, radius) [m]. False for a half-space.
 bool boundingSphere(const ContactShape& shape, Eigen::Vector3d& centre_m, double& radius_m);
 
