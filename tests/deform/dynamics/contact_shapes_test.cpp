@@ -254,3 +254,38 @@ TEST_CASE("a point the cheap test calls apart is never within the margin, and mo
   const ConvexPoints hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   CHECK_FALSE(SurelyApart(hull.shape(), margin_m)({10, 10, 10}));
 }
+
+TEST_CASE("a shape called Lipschitz reports a depth that moves no faster than the point", "[dynamics]") {
+  // findFaceContacts skips the samples nearer a triangle's centroid than the centroid's distance less the
+  // margin: sound only where |depth(x) - depth(y)| <= |x - y| wherever both are reported.
+  const Eigen::Matrix3d turned =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const std::vector<ContactShape> lipschitz = {
+      SphereShape{{0.2, 0, 0}, 0.5},
+      CapsuleShape{{0, 0, -1}, {0, 0, 1}, 0.3},
+      CylinderShape{{0, 0, -2}, {0, 0, 1}, 0.127, {0.4, 0.1, 0}},
+      BoxShape{{0, 0.1, 0}, turned, {0.5, 0.25, 0.4}},
+  };
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.5, 1.5), step(-0.05, 0.05);
+  constexpr double kReach = 10.0;  // every point within reach is reported
+  for (const ContactShape& shape : lipschitz) {
+    CHECK(distanceIsLipschitz(shape));
+    double steepest = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const Eigen::Vector3d x(coordinate(random), coordinate(random), coordinate(random));
+      const Eigen::Vector3d y = x + Eigen::Vector3d(step(random), step(random), step(random));
+      Penetration px, py;
+      REQUIRE(penetration(shape, x, px, kReach));
+      REQUIRE(penetration(shape, y, py, kReach));
+      steepest = std::max(steepest, std::abs(px.depth_m - py.depth_m) / (x - y).norm());
+    }
+    CHECK(steepest <= 1 + 1e-9);
+    CHECK(steepest > 0.9);  // the bound is reached: the depth is a distance, not a fraction of one
+  }
+  // Not claimed: a half-space (unbounded, tested by its plane), a support shape (MPR's depth), a box whose
+  // axes are not orthonormal (its face-pair distances are scaled).
+  CHECK_FALSE(distanceIsLipschitz(HalfSpaceShape{{0, 0, 1}, 0}));
+  CHECK_FALSE(distanceIsLipschitz(ConvexSupportShape{}));
+  CHECK_FALSE(distanceIsLipschitz(BoxShape{{0, 0, 0}, 2.0 * Eigen::Matrix3d::Identity(), {1, 1, 1}}));
+}
