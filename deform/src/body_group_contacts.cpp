@@ -143,9 +143,11 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side, const std::vecto
         vertex_normal_[tri[j]] += std::acos(std::clamp(e1.dot(e2) / (n1 * n2), -1.0, 1.0)) * face_normal_[t];
     }
   }
-  // The grid's cells: twice the mean longest edge of the surface's triangles at rest (which cells a
-  // triangle visits changes nothing found: each sample is tested against every triangle near it, in
-  // triangle order; the rest shape's size spares the substep a pass over the whole surface).
+  // The grid's cells: the mean longest edge of the surface's triangles at rest (which cells a triangle
+  // visits changes nothing found: each sample is tested against every triangle near it, in triangle order;
+  // the rest shape's size spares the substep a pass over the whole surface, and cells half the size of
+  // twice that edge tested a quarter fewer places: 1.36 -> 1.02 billion instructions in car_to_car at 250
+  // points, none fewer at half that).
   if (cell_m_.size() != bodies_.size()) {
     cell_m_.resize(bodies_.size());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -155,16 +157,18 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side, const std::vecto
       for (const auto& tri : settings.triangles)
         sum_m += std::max((x0[tri[1]] - x0[tri[0]]).norm(), (x0[tri[2]] - x0[tri[0]]).norm());
       cell_m_[i] = std::max(
-          settings.triangles.empty() ? 0.0 : 2.0 * sum_m / static_cast<double>(settings.triangles.size()),
-          0.05);
+          settings.triangles.empty() ? 0.0 : sum_m / static_cast<double>(settings.triangles.size()), 0.05);
     }
   }
   const double cell_m = cell_m_[triangle_index];
   const double inv_cell = 1.0 / cell_m;
+  // Cells counted from below the corners' box by more than the reach, so that no sample or grown triangle
+  // box has a negative cell (one would have been missed).
+  const int pad = 4 + static_cast<int>(std::ceil(grow_m * inv_cell));
   auto cellOf = [&](const Eigen::Vector3d& p) {
-    return Eigen::Vector3i(static_cast<int>(std::floor((p.x() - corner_lo.x()) * inv_cell)) + 4,
-                           static_cast<int>(std::floor((p.y() - corner_lo.y()) * inv_cell)) + 4,
-                           static_cast<int>(std::floor((p.z() - corner_lo.z()) * inv_cell)) + 4);
+    return Eigen::Vector3i(static_cast<int>(std::floor((p.x() - corner_lo.x()) * inv_cell)) + pad,
+                           static_cast<int>(std::floor((p.y() - corner_lo.y()) * inv_cell)) + pad,
+                           static_cast<int>(std::floor((p.z() - corner_lo.z()) * inv_cell)) + pad);
   };
   auto key = [](const Eigen::Vector3i& c) {
     return (static_cast<uint64_t>(c.x()) << 42) | (static_cast<uint64_t>(c.y()) << 21) |
