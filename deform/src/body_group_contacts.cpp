@@ -113,15 +113,16 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side, const std::vecto
   // around it, in triangle order). Only those: the acos of every corner of the surface was a tenth of a
   // two-car crash's time at 1,000 points, and the contact region is a small part of the surface.
   const std::size_t triangle_count = triangles.size();
+  constexpr uint8_t kNeighbour = 1, kCandidate = 2;  // needed_face_: whose face normal, and why
   needed_face_.assign(triangle_count, 0);
   needed_corner_.assign(corners.size(), 0);
   for (std::size_t t = 0; t < triangle_count; ++t) {
     if (!candidate(triangles[t])) continue;
-    needed_face_[t] = 1;
+    needed_face_[t] = kCandidate;
     for (int j = 0; j < 3; ++j) {
       needed_corner_[triangles[t][j]] = 1;
       const uint32_t other = across[3 * t + static_cast<uint32_t>(j)];
-      if (other != UINT32_MAX) needed_face_[other] = 1;
+      if (other != UINT32_MAX && needed_face_[other] == 0) needed_face_[other] = kNeighbour;
     }
   }
   face_normal_.resize(triangle_count);
@@ -182,7 +183,7 @@ void BodyGroup::findContacts(std::size_t l, uint8_t point_side, const std::vecto
   best_bary_.resize(samples_.size());
 
   for (uint32_t t = 0; t < triangles.size(); ++t) {
-    if (!needed_face_[t] || !candidate(triangles[t])) continue;
+    if (needed_face_[t] != kCandidate) continue;
     const auto& tri = triangles[t];
     const Eigen::Vector3d &q0 = corners[tri[0]], &q1 = corners[tri[1]], &q2 = corners[tri[2]];
     const Eigen::Vector3d box_lo = q0.cwiseMin(q1).cwiseMin(q2), box_hi = q0.cwiseMax(q1).cwiseMax(q2);

@@ -434,9 +434,13 @@ void applyOverride(json& document, const Override& override) {
           "--set " + override.path + ": this scene lists its cars under vehicles: set vehicles[0]." +
           (parts.size() > 1 ? override.path.substr(override.path.find('.') + 1) : "...") +
           " (and the same for each car)");
-    if (parts[0] == "vehicles" && !document.contains("vehicles") && document.contains("vehicle"))
-      throw deform::InputError("--set " + override.path +
-                               ": this scene has one car, under vehicle: set vehicle.... instead");
+    if (parts[0] == "vehicles" && !document.contains("vehicles") && document.contains("vehicle")) {
+      // vehicles[0].mass_kg -> vehicle.mass_kg
+      const std::size_t after = override.path.find("].");
+      throw deform::InputError(
+          "--set " + override.path + ": this scene has one car, under vehicle: set vehicle." +
+          (after != std::string::npos ? override.path.substr(after + 2) : "...") + " instead");
+    }
   }
   json value;
   try {

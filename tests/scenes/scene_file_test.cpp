@@ -233,8 +233,9 @@ TEST_CASE("overrides (--set) change any key and are checked as strictly as the f
       scenes::loadScene("car_to_car", {scenes::parseOverride("vehicle.deformation.control_points=500")}),
       Catch::Contains("--set vehicle.deformation.control_points") &&
           Catch::Contains("vehicles[0].deformation.control_points"));
-  CHECK_THROWS_WITH(scenes::loadScene("wall_crash", {scenes::parseOverride("vehicles[0].mass_kg=900")}),
-                    Catch::Contains("--set vehicles[0].mass_kg") && Catch::Contains("under vehicle"));
+  CHECK_THROWS_WITH(
+      scenes::loadScene("wall_crash", {scenes::parseOverride("vehicles[0].mass_kg=900")}),
+      Catch::Contains("--set vehicles[0].mass_kg") && Catch::Contains("set vehicle.mass_kg instead"));
   CHECK(scenes::loadScene("car_to_car", {scenes::parseOverride("vehicles[1].deformation.control_points=120")})
             .vehicles[1]
             .deformation.settings.control_points == 120);
