@@ -1,9 +1,10 @@
 #pragma once
 // Distance constraints (edges, bends) swept four at a time where four neighbours in the sweep share no
-// point, and eight (two fours, loaded before either is stored) where eight do. Such projections commute,
-// so projecting them side by side, each in its own SIMD lane with the operations of projectDistance in the
-// same order (no fused multiply-add), gives the one-by-one Gauss-Seidel sweep's result to the bit (the
-// test `the wide sweep...`). AVX2, chosen at run time; the scalar sweep elsewhere.
+// point, eight (two fours, loaded before either is stored) where eight do, and thirty-two in stages where
+// thirty-two do (each stage over all of them before the next: their square roots and divisions overlap). Such
+// projections commute, so projecting them side by side, each in its own SIMD lane with the operations of
+// projectDistance in the same order (no fused multiply-add), gives the one-by-one Gauss-Seidel sweep's result
+// to the bit (the test `the wide sweep...`). AVX2, chosen at run time; the scalar sweep elsewhere.
 #include <deform/constraints.hpp>
 #include <deform/solver_params.hpp>
 
@@ -19,7 +20,7 @@ struct DistanceSweep {
   Eigen::Vector3d* x = nullptr;       ///< positions [m]
   const double* w = nullptr;          ///< inverse masses [1/kg]
   const uint32_t* pairs = nullptr;    ///< the two points of constraint k at 2 k, 2 k + 1
-  const uint8_t* disjoint = nullptr;  ///< disjointRuns: from k on, eight or four share no point
+  const uint8_t* disjoint = nullptr;  ///< disjointRuns: how many from k on share no point
   const double* rest_m = nullptr;     ///< rest lengths [m]
   const DistanceFactors* factors = nullptr;
   double* lambda = nullptr;           ///< multipliers [N s^2]
@@ -40,10 +41,11 @@ std::vector<uint32_t> interleavedPairs(const std::vector<Constraint>& constraint
   return pairs;
 }
 
-/// disjointRuns' marks: constraints k .. k + 7 (or k .. k + 3) exist and no two of them share a point.
-inline constexpr uint8_t kDisjointEight = 2, kDisjointFour = 1;
+/// The longest run disjointRuns reports.
+inline constexpr std::size_t kLongestRun = 255;
 
-/// For each constraint k, kDisjointEight, kDisjointFour or 0.
+/// For each constraint k, how many constraints from k on (k included, at most kLongestRun) share no point
+/// with each other: 0 where constraint k joins a point to itself.
 std::vector<uint8_t> disjointRuns(const std::vector<uint32_t>& pairs);
 
 /// Constraints of [begin, end) whose squared length |x_a - x_b|^2 is outside their elastic band
