@@ -123,6 +123,7 @@ void DeformableBody::sweepConstraints() {
   columns.mass_kg = m;
   columns.order = column_order;
   columns.spokes = spokes;
+  columns.points_in_order = columns_in_point_order_;
   columns.rest_m = column_rest;
   columns.shift_m = shift;
   columns.core_m = settings.core_m;

@@ -5,11 +5,18 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 
 #include "simd_rows.hpp"
 
 namespace deform {
 namespace {
+
+// The records read as pairs of doubles four at a time (splitPairs4).
+static_assert(sizeof(DistanceFactors) == 16 && offsetof(DistanceFactors, inverse_denominator) == 8);
+static_assert(sizeof(YieldLimits) == 16 && offsetof(YieldLimits, shorten_m) == 8);
+static_assert(sizeof(SpokeConstraint) == 16 && offsetof(SpokeConstraint, compliance_m_per_N) == 8);
 
 /// The limit of column k on its multiplier `next` (projectColumn's Limit), as the sweep puts it.
 inline double columnLimit(const ColumnSweep& s, std::size_t k, double to_lambda,
@@ -69,20 +76,59 @@ __attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256
                        _mm256_mul_pd(_mm256_sub_pd(negative_c, _mm256_mul_pd(alpha, lambda)), inverse));
 }
 
-/// Adds the reaction of four corrections, lane by lane in the sweep's order.
+/// Adds the reaction of four corrections, lane by lane in the sweep's order: the lanes as rows (pull x, y,
+/// z, twist x) and (twist y, z), each added in turn, so every component takes its four terms in lane order.
 __attribute__((target("avx2"))) inline void addReaction(const Points4& pull, const Points4& twist,
                                                         ColumnReaction& out) {
-  alignas(32) double px[4], py[4], pz[4], tx[4], ty[4], tz[4];
-  _mm256_store_pd(px, pull.x);
-  _mm256_store_pd(py, pull.y);
-  _mm256_store_pd(pz, pull.z);
-  _mm256_store_pd(tx, twist.x);
-  _mm256_store_pd(ty, twist.y);
-  _mm256_store_pd(tz, twist.z);
+  // The 4 x 4 of (pull x, y, z, twist x) transposed: row `lane` holds that lane's four.
+  const __m256d xy01 = _mm256_unpacklo_pd(pull.x, pull.y);   // px0 py0 px2 py2
+  const __m256d xy11 = _mm256_unpackhi_pd(pull.x, pull.y);   // px1 py1 px3 py3
+  const __m256d zt01 = _mm256_unpacklo_pd(pull.z, twist.x);  // pz0 tx0 pz2 tx2
+  const __m256d zt11 = _mm256_unpackhi_pd(pull.z, twist.x);  // pz1 tx1 pz3 tx3
+  const __m256d row[4] = {_mm256_permute2f128_pd(xy01, zt01, 0x20), _mm256_permute2f128_pd(xy11, zt11, 0x20),
+                          _mm256_permute2f128_pd(xy01, zt01, 0x31), _mm256_permute2f128_pd(xy11, zt11, 0x31)};
+  // (twist y, z) of lanes 0 .. 3.
+  const __m256d yz02 = _mm256_unpacklo_pd(twist.y, twist.z);  // ty0 tz0 ty2 tz2
+  const __m256d yz13 = _mm256_unpackhi_pd(twist.y, twist.z);  // ty1 tz1 ty3 tz3
+  const __m128d tail[4] = {_mm256_castpd256_pd128(yz02), _mm256_castpd256_pd128(yz13),
+                           _mm256_extractf128_pd(yz02, 1), _mm256_extractf128_pd(yz13, 1)};
+  __m256d sum = _mm256_setr_pd(out.pull.x(), out.pull.y(), out.pull.z(), out.twist.x());
+  __m128d sum_tail = _mm_setr_pd(out.twist.y(), out.twist.z());
   for (int lane = 0; lane < 4; ++lane) {
-    out.pull += Eigen::Vector3d(px[lane], py[lane], pz[lane]);
-    out.twist += Eigen::Vector3d(tx[lane], ty[lane], tz[lane]);
+    sum = _mm256_add_pd(sum, row[lane]);
+    sum_tail = _mm_add_pd(sum_tail, tail[lane]);
   }
+  alignas(32) double head[4];
+  _mm256_store_pd(head, sum);
+  out.pull = {head[0], head[1], head[2]};
+  out.twist = {head[3], _mm_cvtsd_f64(sum_tail), _mm_cvtsd_f64(_mm_unpackhi_pd(sum_tail, sum_tail))};
+}
+
+/// Four values of an array at the indices k, or from k[0] on where kRun (k[l] = k[0] + l).
+template <bool kRun>
+__attribute__((target("avx2"))) inline __m256d doubles4(const double* a, const std::size_t (&k)[4]) {
+  if constexpr (kRun) return _mm256_loadu_pd(a + k[0]);
+  return _mm256_setr_pd(a[k[0]], a[k[1]], a[k[2]], a[k[3]]);
+}
+template <bool kRun>
+__attribute__((target("avx2"))) inline Points4 points4(const Eigen::Vector3d* a, const std::size_t (&k)[4]) {
+  if constexpr (kRun) return loadRun4(a + k[0]);
+  return loadPoints4(a[k[0]], a[k[1]], a[k[2]], a[k[3]]);
+}
+template <bool kRun>
+__attribute__((target("avx2"))) inline void storePoints(const Points4& p, Eigen::Vector3d* a,
+                                                        const std::size_t (&k)[4]) {
+  if constexpr (kRun)
+    storeRun4(p, a + k[0]);
+  else
+    storePoints4(p, a[k[0]], a[k[1]], a[k[2]], a[k[3]]);
+}
+/// The two doubles of four 16-byte records from k[0] on (kRun), de-interleaved: first, second.
+__attribute__((target("avx2"))) inline void splitPairs4(const double* record, __m256d& first,
+                                                        __m256d& second) {
+  const __m256d r01 = _mm256_loadu_pd(record), r23 = _mm256_loadu_pd(record + 4);
+  first = _mm256_permute4x64_pd(_mm256_unpacklo_pd(r01, r23), 0xD8);
+  second = _mm256_permute4x64_pd(_mm256_unpackhi_pd(r01, r23), 0xD8);
 }
 
 /// Spokes order[j .. j + 3], each lane spokeOne's operations in their order.
@@ -131,42 +177,58 @@ __attribute__((target("avx2"))) void spokesFour(const SpokeSweep& s, std::size_t
   addReaction(pull, cross4(arm, pull), out);
 }
 
-/// Columns order[j .. j + 3], each lane sweepOne's operations in their order.
-template <bool kLimited>
+/// Columns order[j .. j + 3], each lane sweepOne's operations in their order. kRun: they are columns
+/// k .. k + 3 of points k .. k + 3 (ColumnSweep::points_in_order), read and written by whole rows.
+template <bool kLimited, bool kRun>
 __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
   const std::size_t k[4] = {s.order[j], s.order[j + 1], s.order[j + 2], s.order[j + 3]};
-  const uint32_t i[4] = {s.spokes[k[0]].point, s.spokes[k[1]].point, s.spokes[k[2]].point,
-                         s.spokes[k[3]].point};
+  std::size_t i[4];
+  for (int lane = 0; lane < 4; ++lane) i[lane] = kRun ? k[lane] : s.spokes[k[lane]].point;
   Eigen::Vector3d* x = s.x;
-  const Points4 before = loadPoints4(x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
-  const Points4 rest = loadPoints4(s.rest_m[k[0]], s.rest_m[k[1]], s.rest_m[k[2]], s.rest_m[k[3]]);
-  const Points4 lambda = loadPoints4(s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
-  const __m256d alpha = _mm256_setr_pd(s.factors[k[0]].alpha_tilde, s.factors[k[1]].alpha_tilde,
-                                       s.factors[k[2]].alpha_tilde, s.factors[k[3]].alpha_tilde);
-  const __m256d inverse =
-      _mm256_setr_pd(s.factors[k[0]].inverse_denominator, s.factors[k[1]].inverse_denominator,
-                     s.factors[k[2]].inverse_denominator, s.factors[k[3]].inverse_denominator);
+  const Points4 before = points4<kRun>(x, i);
+  const Points4 rest = points4<kRun>(s.rest_m, k);
+  const Points4 lambda = points4<kRun>(s.lambda, k);
+  __m256d alpha, inverse;
+  if constexpr (kRun) {
+    splitPairs4(&s.factors[k[0]].alpha_tilde, alpha, inverse);
+  } else {
+    alpha = _mm256_setr_pd(s.factors[k[0]].alpha_tilde, s.factors[k[1]].alpha_tilde,
+                           s.factors[k[2]].alpha_tilde, s.factors[k[3]].alpha_tilde);
+    inverse = _mm256_setr_pd(s.factors[k[0]].inverse_denominator, s.factors[k[1]].inverse_denominator,
+                             s.factors[k[2]].inverse_denominator, s.factors[k[3]].inverse_denominator);
+  }
   // c = x - (rest + shift); next = lambda + (-c - alpha lambda) / (w + w_core + alpha).
   const Points4 c = minus(before, plus(rest, broadcast4(s.shift_m)));
   const __m256d sign = _mm256_set1_pd(-0.0);
   Points4 next{nextLambda(lambda.x, c.x, alpha, inverse), nextLambda(lambda.y, c.y, alpha, inverse),
                nextLambda(lambda.z, c.z, alpha, inverse)};
   if constexpr (kLimited) {
-    const Points4 normal = loadPoints4(s.normals[k[0]], s.normals[k[1]], s.normals[k[2]], s.normals[k[3]]);
-    const __m256d to_lambda =
-        _mm256_div_pd(_mm256_set1_pd(s.h2),
-                      _mm256_setr_pd(s.spokes[k[0]].compliance_m_per_N, s.spokes[k[1]].compliance_m_per_N,
-                                     s.spokes[k[2]].compliance_m_per_N, s.spokes[k[3]].compliance_m_per_N));
+    const Points4 normal = points4<kRun>(s.normals, k);
+    __m256d compliance, stretch, shorten, bottomed;
+    if constexpr (kRun) {
+      __m256d point_and_material;
+      splitPairs4(reinterpret_cast<const double*>(&s.spokes[k[0]]), point_and_material, compliance);
+      splitPairs4(&s.limits[k[0]].stretch_m, stretch, shorten);
+      uint32_t four_bytes;
+      std::memcpy(&four_bytes, s.bottomed + k[0], sizeof four_bytes);
+      const __m256i flags = _mm256_cvtepu8_epi64(_mm_cvtsi32_si128(static_cast<int>(four_bytes)));
+      bottomed = _mm256_castsi256_pd(
+          _mm256_xor_si256(_mm256_cmpeq_epi64(flags, _mm256_setzero_si256()), _mm256_set1_epi64x(-1)));
+    } else {
+      compliance = _mm256_setr_pd(s.spokes[k[0]].compliance_m_per_N, s.spokes[k[1]].compliance_m_per_N,
+                                  s.spokes[k[2]].compliance_m_per_N, s.spokes[k[3]].compliance_m_per_N);
+      stretch = _mm256_setr_pd(s.limits[k[0]].stretch_m, s.limits[k[1]].stretch_m, s.limits[k[2]].stretch_m,
+                               s.limits[k[3]].stretch_m);
+      shorten = _mm256_setr_pd(s.limits[k[0]].shorten_m, s.limits[k[1]].shorten_m, s.limits[k[2]].shorten_m,
+                               s.limits[k[3]].shorten_m);
+      bottomed = _mm256_castsi256_pd(
+          _mm256_setr_epi64x(-int64_t{s.bottomed[k[0]] != 0}, -int64_t{s.bottomed[k[1]] != 0},
+                             -int64_t{s.bottomed[k[2]] != 0}, -int64_t{s.bottomed[k[3]] != 0}));
+    }
+    const __m256d to_lambda = _mm256_div_pd(_mm256_set1_pd(s.h2), compliance);
     // columnSurelyWithinLimit, lane by lane.
     const __m256d along = dot4(normal, next);
     const __m256d pushing_in = _mm256_cmp_pd(along, _mm256_setzero_pd(), _CMP_GT_OQ);
-    const __m256d bottomed = _mm256_castsi256_pd(
-        _mm256_setr_epi64x(-int64_t{s.bottomed[k[0]] != 0}, -int64_t{s.bottomed[k[1]] != 0},
-                           -int64_t{s.bottomed[k[2]] != 0}, -int64_t{s.bottomed[k[3]] != 0}));
-    const __m256d shorten = _mm256_setr_pd(s.limits[k[0]].shorten_m, s.limits[k[1]].shorten_m,
-                                           s.limits[k[2]].shorten_m, s.limits[k[3]].shorten_m);
-    const __m256d stretch = _mm256_setr_pd(s.limits[k[0]].stretch_m, s.limits[k[1]].stretch_m,
-                                           s.limits[k[2]].stretch_m, s.limits[k[3]].stretch_m);
     const __m256d yield_m = _mm256_blendv_pd(stretch, shorten, pushing_in);
     const __m256d magnitude2 = _mm256_mul_pd(dot4(next, next), _mm256_set1_pd(1 + kSurelyMargin));
     const __m256d bound =
@@ -196,12 +258,10 @@ __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t
       next = {_mm256_load_pd(nx), _mm256_load_pd(ny), _mm256_load_pd(nz)};
     }
   }
-  const __m256d w = _mm256_setr_pd(s.w[i[0]], s.w[i[1]], s.w[i[2]], s.w[i[3]]);
-  const Points4 after = plus(before, times(w, minus(next, lambda)));
-  storePoints4(after, x[i[0]], x[i[1]], x[i[2]], x[i[3]]);
-  storePoints4(next, s.lambda[k[0]], s.lambda[k[1]], s.lambda[k[2]], s.lambda[k[3]]);
-  const __m256d m = _mm256_setr_pd(s.mass_kg[i[0]], s.mass_kg[i[1]], s.mass_kg[i[2]], s.mass_kg[i[3]]);
-  const Points4 pull = times(m, minus(after, before));
+  const Points4 after = plus(before, times(doubles4<kRun>(s.w, i), minus(next, lambda)));
+  storePoints<kRun>(after, x, i);
+  storePoints<kRun>(next, s.lambda, k);
+  const Points4 pull = times(doubles4<kRun>(s.mass_kg, i), minus(after, before));
   addReaction(pull, cross4(minus(rest, broadcast4(s.core_m)), pull), out);
 }
 
@@ -250,7 +310,13 @@ __attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& shared, std::s
                                                ColumnReaction& out) {
   const ColumnSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
   std::size_t j = begin;
-  for (; j + 4 <= end; j += 4) sweepFour<kLimited>(s, j, out);
+  for (; j + 4 <= end; j += 4) {
+    const std::size_t k = s.order[j];
+    if (s.points_in_order && s.order[j + 1] == k + 1 && s.order[j + 2] == k + 2 && s.order[j + 3] == k + 3)
+      sweepFour<kLimited, true>(s, j, out);
+    else
+      sweepFour<kLimited, false>(s, j, out);
+  }
   for (; j < end; ++j) sweepOne<kLimited>(s, j, out);
 }
 #endif

@@ -20,6 +20,7 @@ struct ColumnSweep {
   const double* mass_kg = nullptr;
   const uint32_t* order = nullptr;  ///< the columns in sweep order (BodySettings::column_order)
   const SpokeConstraint* spokes = nullptr;
+  bool points_in_order = false;  ///< spokes[k].point == k for every k: four in a row are read as rows
   const Eigen::Vector3d* rest_m = nullptr;  ///< each column's rest place, in the body's frame [m]
   Eigen::Vector3d shift_m{0, 0, 0};         ///< the core's displacement: rest places move with it [m]
   Eigen::Vector3d core_m{0, 0, 0};          ///< the core's rest place (the twist's origin) [m]

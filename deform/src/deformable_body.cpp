@@ -46,6 +46,9 @@ DeformableBody::DeformableBody(std::shared_ptr<const BodySettings> settings, con
       [](const BendConstraint& c) { return c.right; });
   edge_disjoint_ = disjointRuns(edge_pairs_);
   bend_disjoint_ = disjointRuns(bend_pairs_);
+  columns_in_point_order_ = true;
+  for (std::size_t k = 0; k < settings_->spokes.size(); ++k)
+    columns_in_point_order_ = columns_in_point_order_ && settings_->spokes[k].point == k;
   refreshYieldForces();
 }
 

@@ -51,6 +51,29 @@ __attribute__((target("avx2"))) inline void storePoints4(const Points4& p, Eigen
   _mm_storeh_pd(q3.data() + 2, z23);
 }
 
+/// The four consecutive points p[0] .. p[3] in lanes 0 .. 3: three loads of four coordinates each,
+/// [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3], sorted into columns.
+__attribute__((target("avx2"))) inline Points4 loadRun4(const Eigen::Vector3d* p) {
+  const double* d = p->data();
+  const __m256d a = _mm256_loadu_pd(d), b = _mm256_loadu_pd(d + 4), c = _mm256_loadu_pd(d + 8);
+  const __m256d xy02 = _mm256_blend_pd(a, b, 0b1100);       // x0 y0 x2 y2
+  const __m256d zx13 = _mm256_permute2f128_pd(a, c, 0x21);  // z0 x1 z2 x3
+  const __m256d yz13 = _mm256_blend_pd(b, c, 0b1100);       // y1 z1 y3 z3
+  return {_mm256_shuffle_pd(xy02, zx13, 0b1010), _mm256_shuffle_pd(xy02, yz13, 0b0101),
+          _mm256_shuffle_pd(zx13, yz13, 0b1010)};
+}
+
+/// Lanes 0 .. 3 of `p` into the four consecutive points q[0] .. q[3] (loadRun4's inverse).
+__attribute__((target("avx2"))) inline void storeRun4(const Points4& p, Eigen::Vector3d* q) {
+  const __m256d xy02 = _mm256_shuffle_pd(p.x, p.y, 0b0000);  // x0 y0 x2 y2
+  const __m256d zx13 = _mm256_shuffle_pd(p.z, p.x, 0b1010);  // z0 x1 z2 x3
+  const __m256d yz13 = _mm256_shuffle_pd(p.y, p.z, 0b1111);  // y1 z1 y3 z3
+  double* d = q->data();
+  _mm256_storeu_pd(d, _mm256_permute2f128_pd(xy02, zx13, 0x20));
+  _mm256_storeu_pd(d + 4, _mm256_permute2f128_pd(yz13, xy02, 0x30));
+  _mm256_storeu_pd(d + 8, _mm256_permute2f128_pd(zx13, yz13, 0x31));
+}
+
 /// (a x b) lane by lane, as Eigen's cross: (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
 __attribute__((target("avx2"))) inline Points4 cross4(const Points4& a, const Points4& b) {
   return {_mm256_sub_pd(_mm256_mul_pd(a.y, b.z), _mm256_mul_pd(a.z, b.y)),

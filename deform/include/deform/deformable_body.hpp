@@ -250,6 +250,8 @@ class DeformableBody {
   /// (deform/src/sweep_wide.hpp: they are swept side by side).
   std::vector<uint32_t> edge_pairs_, bend_pairs_;
   std::vector<uint8_t> edge_disjoint_, bend_disjoint_;
+  /// Whether column k holds point k for every k (the column sweep then reads four in a row as rows).
+  bool columns_in_point_order_ = false;
   /// Scratch of plasticity, per half: the constraints outside their elastic band and their squared lengths.
   std::vector<uint32_t> outside_[2];
   std::vector<double> outside_m2_[2];
