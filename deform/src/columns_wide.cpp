@@ -76,32 +76,48 @@ __attribute__((target("avx2"))) inline __m256d nextLambda(__m256d lambda, __m256
                        _mm256_mul_pd(_mm256_sub_pd(negative_c, _mm256_mul_pd(alpha, lambda)), inverse));
 }
 
-/// Adds the reaction of four corrections, lane by lane in the sweep's order: the lanes as rows (pull x, y,
-/// z, twist x) and (twist y, z), each added in turn, so every component takes its four terms in lane order.
+/// The columns' reaction as two rows held in registers through a sweep: (pull x, y, z, twist x) and
+/// (twist y, z).
+struct ReactionRows {
+  __m256d head;
+  __m128d tail;
+};
+
+__attribute__((target("avx2"))) inline ReactionRows rowsOf(const ColumnReaction& r) {
+  return {_mm256_setr_pd(r.pull.x(), r.pull.y(), r.pull.z(), r.twist.x()),
+          _mm_setr_pd(r.twist.y(), r.twist.z())};
+}
+
+__attribute__((target("avx2"))) inline ColumnReaction reactionOf(const ReactionRows& rows) {
+  alignas(32) double head[4], tail[2];
+  _mm256_store_pd(head, rows.head);
+  _mm_store_pd(tail, rows.tail);
+  ColumnReaction r;
+  r.pull = {head[0], head[1], head[2]};
+  r.twist = {head[3], tail[0], tail[1]};
+  return r;
+}
+
+/// Adds the reaction of four corrections, lane by lane in the sweep's order: each lane's row added in turn,
+/// so every component takes its four terms in lane order (as ColumnReaction's one-at-a-time sums).
 __attribute__((target("avx2"))) inline void addReaction(const Points4& pull, const Points4& twist,
-                                                        ColumnReaction& out) {
+                                                        ReactionRows& out) {
   // The 4 x 4 of (pull x, y, z, twist x) transposed: row `lane` holds that lane's four.
-  const __m256d xy01 = _mm256_unpacklo_pd(pull.x, pull.y);   // px0 py0 px2 py2
-  const __m256d xy11 = _mm256_unpackhi_pd(pull.x, pull.y);   // px1 py1 px3 py3
-  const __m256d zt01 = _mm256_unpacklo_pd(pull.z, twist.x);  // pz0 tx0 pz2 tx2
-  const __m256d zt11 = _mm256_unpackhi_pd(pull.z, twist.x);  // pz1 tx1 pz3 tx3
-  const __m256d row[4] = {_mm256_permute2f128_pd(xy01, zt01, 0x20), _mm256_permute2f128_pd(xy11, zt11, 0x20),
-                          _mm256_permute2f128_pd(xy01, zt01, 0x31), _mm256_permute2f128_pd(xy11, zt11, 0x31)};
-  // (twist y, z) of lanes 0 .. 3.
+  const __m256d xy02 = _mm256_unpacklo_pd(pull.x, pull.y);   // px0 py0 px2 py2
+  const __m256d xy13 = _mm256_unpackhi_pd(pull.x, pull.y);   // px1 py1 px3 py3
+  const __m256d zt02 = _mm256_unpacklo_pd(pull.z, twist.x);  // pz0 tx0 pz2 tx2
+  const __m256d zt13 = _mm256_unpackhi_pd(pull.z, twist.x);  // pz1 tx1 pz3 tx3
+  // (twist y, z) of each lane.
   const __m256d yz02 = _mm256_unpacklo_pd(twist.y, twist.z);  // ty0 tz0 ty2 tz2
   const __m256d yz13 = _mm256_unpackhi_pd(twist.y, twist.z);  // ty1 tz1 ty3 tz3
-  const __m128d tail[4] = {_mm256_castpd256_pd128(yz02), _mm256_castpd256_pd128(yz13),
-                           _mm256_extractf128_pd(yz02, 1), _mm256_extractf128_pd(yz13, 1)};
-  __m256d sum = _mm256_setr_pd(out.pull.x(), out.pull.y(), out.pull.z(), out.twist.x());
-  __m128d sum_tail = _mm_setr_pd(out.twist.y(), out.twist.z());
-  for (int lane = 0; lane < 4; ++lane) {
-    sum = _mm256_add_pd(sum, row[lane]);
-    sum_tail = _mm_add_pd(sum_tail, tail[lane]);
-  }
-  alignas(32) double head[4];
-  _mm256_store_pd(head, sum);
-  out.pull = {head[0], head[1], head[2]};
-  out.twist = {head[3], _mm_cvtsd_f64(sum_tail), _mm_cvtsd_f64(_mm_unpackhi_pd(sum_tail, sum_tail))};
+  out.head = _mm256_add_pd(out.head, _mm256_permute2f128_pd(xy02, zt02, 0x20));
+  out.head = _mm256_add_pd(out.head, _mm256_permute2f128_pd(xy13, zt13, 0x20));
+  out.head = _mm256_add_pd(out.head, _mm256_permute2f128_pd(xy02, zt02, 0x31));
+  out.head = _mm256_add_pd(out.head, _mm256_permute2f128_pd(xy13, zt13, 0x31));
+  out.tail = _mm_add_pd(out.tail, _mm256_castpd256_pd128(yz02));
+  out.tail = _mm_add_pd(out.tail, _mm256_castpd256_pd128(yz13));
+  out.tail = _mm_add_pd(out.tail, _mm256_extractf128_pd(yz02, 1));
+  out.tail = _mm_add_pd(out.tail, _mm256_extractf128_pd(yz13, 1));
 }
 
 /// Four values of an array at the indices k, or from k[0] on where kRun (k[l] = k[0] + l).
@@ -133,7 +149,8 @@ __attribute__((target("avx2"))) inline void splitPairs4(const double* record, __
 
 /// Spokes order[j .. j + 3], each lane spokeOne's operations in their order.
 template <bool kLimited>
-__attribute__((target("avx2"))) void spokesFour(const SpokeSweep& s, std::size_t j, ColumnReaction& out) {
+__attribute__((target("avx2"))) inline void spokesFour(const SpokeSweep& s, std::size_t j,
+                                                       ReactionRows& out) {
   const std::size_t k[4] = {s.order[j], s.order[j + 1], s.order[j + 2], s.order[j + 3]};
   const uint32_t i[4] = {s.spokes[k[0]].point, s.spokes[k[1]].point, s.spokes[k[2]].point,
                          s.spokes[k[3]].point};
@@ -180,7 +197,8 @@ __attribute__((target("avx2"))) void spokesFour(const SpokeSweep& s, std::size_t
 /// Columns order[j .. j + 3], each lane sweepOne's operations in their order. kRun: they are columns
 /// k .. k + 3 of points k .. k + 3 (ColumnSweep::points_in_order), read and written by whole rows.
 template <bool kLimited, bool kRun>
-__attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t j, ColumnReaction& out) {
+__attribute__((target("avx2"))) inline void sweepFour(const ColumnSweep& s, std::size_t j,
+                                                      ReactionRows& out) {
   const std::size_t k[4] = {s.order[j], s.order[j + 1], s.order[j + 2], s.order[j + 3]};
   std::size_t i[4];
   for (int lane = 0; lane < 4; ++lane) i[lane] = kRun ? k[lane] : s.spokes[k[lane]].point;
@@ -268,9 +286,11 @@ __attribute__((target("avx2"))) void sweepFour(const ColumnSweep& s, std::size_t
 template <bool kLimited>
 __attribute__((target("avx2"))) void spokesAvx2(const SpokeSweep& shared, std::size_t begin, std::size_t end,
                                                 ColumnReaction& out) {
-  const SpokeSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
+  const SpokeSweep s = shared;      // a local copy: the stores cannot alias its fields (prediction.cpp)
+  ReactionRows rows = rowsOf(out);  // in registers through the loop
   std::size_t j = begin;
-  for (; j + 4 <= end; j += 4) spokesFour<kLimited>(s, j, out);
+  for (; j + 4 <= end; j += 4) spokesFour<kLimited>(s, j, rows);
+  out = reactionOf(rows);
   for (; j < end; ++j) spokeOne<kLimited>(s, j, out);
 }
 
@@ -308,15 +328,17 @@ __attribute__((target("avx2"))) std::size_t notSurelyElasticAvx2(
 template <bool kLimited>
 __attribute__((target("avx2"))) void sweepAvx2(const ColumnSweep& shared, std::size_t begin, std::size_t end,
                                                ColumnReaction& out) {
-  const ColumnSweep s = shared;  // a local copy: the stores cannot alias its fields (prediction.cpp)
+  const ColumnSweep s = shared;     // a local copy: the stores cannot alias its fields (prediction.cpp)
+  ReactionRows rows = rowsOf(out);  // in registers through the loop
   std::size_t j = begin;
   for (; j + 4 <= end; j += 4) {
     const std::size_t k = s.order[j];
     if (s.points_in_order && s.order[j + 1] == k + 1 && s.order[j + 2] == k + 2 && s.order[j + 3] == k + 3)
-      sweepFour<kLimited, true>(s, j, out);
+      sweepFour<kLimited, true>(s, j, rows);
     else
-      sweepFour<kLimited, false>(s, j, out);
+      sweepFour<kLimited, false>(s, j, rows);
   }
+  out = reactionOf(rows);
   for (; j < end; ++j) sweepOne<kLimited>(s, j, out);
 }
 #endif

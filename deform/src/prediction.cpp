@@ -60,12 +60,12 @@ __attribute__((target("avx2"))) inline __m256d inertialComponent(__m256d scale, 
 
 /// Points i .. i + 3, each lane predictOne's operations in its order.
 template <bool kInertial>
-__attribute__((target("avx2"))) void predictFour(const Prediction& p, std::size_t i, PredictionSums& sum) {
+__attribute__((target("avx2"))) void predictFour(const Prediction& p, std::size_t i, PredictionSums& sum,
+                                                 __m256d& to_core_sum) {
   const __m256d h = _mm256_set1_pd(p.h_s), decay = _mm256_set1_pd(p.decay);
   const __m256d m = _mm256_loadu_pd(p.mass_kg + i);
-  const Points4 x = loadPoints4(p.x[i], p.x[i + 1], p.x[i + 2], p.x[i + 3]);
-  const Points4 v = loadPoints4(p.v[i], p.v[i + 1], p.v[i + 2], p.v[i + 3]);
-  storePoints4(x, p.previous[i], p.previous[i + 1], p.previous[i + 2], p.previous[i + 3]);
+  const Points4 x = loadRun4(p.x + i), v = loadRun4(p.v + i);
+  storeRun4(x, p.previous + i);
   const Points4 cv = broadcast4(p.core_velocity_mps);
   const Points4 relative{_mm256_sub_pd(v.x, cv.x), _mm256_sub_pd(v.y, cv.y), _mm256_sub_pd(v.z, cv.z)};
   Points4 vi{_mm256_add_pd(cv.x, _mm256_mul_pd(relative.x, decay)),
@@ -105,11 +105,7 @@ __attribute__((target("avx2"))) void predictFour(const Prediction& p, std::size_
   }
   addLanes(sum.damping_loss_J, damping);
   // The reaction's components, each summed in point order.
-  alignas(32) double tx[4], ty[4], tz[4];
-  _mm256_store_pd(tx, to_core.x);
-  _mm256_store_pd(ty, to_core.y);
-  _mm256_store_pd(tz, to_core.z);
-  for (int lane = 0; lane < 4; ++lane) sum.to_core_Ns += Eigen::Vector3d(tx[lane], ty[lane], tz[lane]);
+  to_core_sum = addLaneRows(to_core_sum, to_core);
   if constexpr (kInertial) {
     const Points4 core_travel = broadcast4(p.h_s * p.core_velocity_mps);
     const Points4 relative_travel{_mm256_sub_pd(travel.x, core_travel.x),
@@ -117,8 +113,7 @@ __attribute__((target("avx2"))) void predictFour(const Prediction& p, std::size_
                                   _mm256_sub_pd(travel.z, core_travel.z)};
     addLanes(sum.inertial_work_J, _mm256_mul_pd(m, dot4(inertial, relative_travel)));
   }
-  storePoints4({_mm256_add_pd(x.x, travel.x), _mm256_add_pd(x.y, travel.y), _mm256_add_pd(x.z, travel.z)},
-               p.x[i], p.x[i + 1], p.x[i + 2], p.x[i + 3]);
+  storeRun4(plus(x, travel), p.x + i);
 }
 
 template <bool kInertial>
@@ -126,9 +121,14 @@ __attribute__((target("avx2"))) void predictAvx2(const Prediction& shared, std::
                                                  PredictionSums& sum) {
   // A local copy: the stores through its pointers then cannot alias its fields, which stay in registers.
   const Prediction p = shared;
+  // The sums as locals (registers) through the loop: the stores through p's pointers could alias `sum`.
+  PredictionSums local = sum;
+  __m256d to_core_sum = rowOf(local.to_core_Ns);
   std::size_t i = begin;
-  for (; i + 4 <= end; i += 4) predictFour<kInertial>(p, i, sum);
-  for (; i < end; ++i) predictOne(p, i, sum);
+  for (; i + 4 <= end; i += 4) predictFour<kInertial>(p, i, local, to_core_sum);
+  local.to_core_Ns = vectorOf(to_core_sum);
+  for (; i < end; ++i) predictOne(p, i, local);
+  sum = local;
 }
 #endif
 

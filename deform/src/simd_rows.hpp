@@ -74,6 +74,28 @@ __attribute__((target("avx2"))) inline void storeRun4(const Points4& p, Eigen::V
   _mm256_storeu_pd(d + 8, _mm256_permute2f128_pd(zx13, yz13, 0x31));
 }
 
+/// A 3-vector as a row (x, y, z, 0), and back: a running sum of vectors held in one register.
+__attribute__((target("avx2"))) inline __m256d rowOf(const Eigen::Vector3d& v) {
+  return _mm256_setr_pd(v.x(), v.y(), v.z(), 0.0);
+}
+__attribute__((target("avx2"))) inline Eigen::Vector3d vectorOf(__m256d row) {
+  alignas(32) double r[4];
+  _mm256_store_pd(r, row);
+  return {r[0], r[1], r[2]};
+}
+
+/// sum + v's lanes 0, 1, 2, 3 in turn, as rows: each component takes its four terms in lane order (the
+/// one-at-a-time sum's order).
+__attribute__((target("avx2"))) inline __m256d addLaneRows(__m256d sum, const Points4& v) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d xy02 = _mm256_unpacklo_pd(v.x, v.y), xy13 = _mm256_unpackhi_pd(v.x, v.y);
+  const __m256d z02 = _mm256_unpacklo_pd(v.z, zero), z13 = _mm256_unpackhi_pd(v.z, zero);
+  sum = _mm256_add_pd(sum, _mm256_permute2f128_pd(xy02, z02, 0x20));
+  sum = _mm256_add_pd(sum, _mm256_permute2f128_pd(xy13, z13, 0x20));
+  sum = _mm256_add_pd(sum, _mm256_permute2f128_pd(xy02, z02, 0x31));
+  return _mm256_add_pd(sum, _mm256_permute2f128_pd(xy13, z13, 0x31));
+}
+
 /// (a x b) lane by lane, as Eigen's cross: (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
 __attribute__((target("avx2"))) inline Points4 cross4(const Points4& a, const Points4& b) {
   return {_mm256_sub_pd(_mm256_mul_pd(a.y, b.z), _mm256_mul_pd(a.z, b.y)),
