@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "body_halves.hpp"
+#include "cap_wide.hpp"
 #include "columns_wide.hpp"
 #include "sweep_wide.hpp"
 
@@ -125,12 +126,9 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
         std::vector<uint32_t>& near = near_cap_of_half_[half];
         near.clear();
         const auto [begin, end] = halfOf(n, half);
-        for (std::size_t i = begin; i < end; ++i) {
-          const double reach = settings.max_deviation_m[i] - kNear_m;
-          // (Written so that a point whose deviation is not a number is listed, as the pass would take it.)
-          if (reach <= 0 || !(deviation(i).squaredNorm() <= reach * reach))
-            near.push_back(static_cast<uint32_t>(i));
-        }
+        // (A point whose deviation is not a number is listed, as the pass would take it.)
+        listNearCaps(x.data(), settings.rest_positions_m.data(), settings.max_deviation_m.data(), core,
+                     settings.core_m, kNear_m, begin, end, true, near);
       });
       for (const auto& near : near_cap_of_half_)
         for (const uint32_t i : near) {
