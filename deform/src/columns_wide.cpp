@@ -303,12 +303,14 @@ __attribute__((target("avx2"))) std::size_t notSurelyElasticAvx2(
   const __m256d margin = _mm256_set1_pd(1 + kSurelyMargin), sign = _mm256_set1_pd(-0.0);
   std::size_t k = begin;
   for (; k + 4 <= end; k += 4) {
-    const Points4 p = loadPoints4(x[spokes[k].point], x[spokes[k + 1].point], x[spokes[k + 2].point],
-                                  x[spokes[k + 3].point]);
-    const Points4 elastic =
-        minus(minus(p, shift), loadPoints4(rest_m[k], rest_m[k + 1], rest_m[k + 2], rest_m[k + 3]));
-    const __m256d along =
-        dot4(loadPoints4(normals[k], normals[k + 1], normals[k + 2], normals[k + 3]), elastic);
+    const uint32_t first = spokes[k].point;
+    const bool in_a_row = spokes[k + 1].point == first + 1 && spokes[k + 2].point == first + 2 &&
+                          spokes[k + 3].point == first + 3;
+    const Points4 p = in_a_row ? loadRun4(x + first)
+                               : loadPoints4(x[first], x[spokes[k + 1].point], x[spokes[k + 2].point],
+                                             x[spokes[k + 3].point]);
+    const Points4 elastic = minus(minus(p, shift), loadRun4(rest_m + k));
+    const __m256d along = dot4(loadRun4(normals + k), elastic);
     // The limits (stretch, shorten) of four columns, de-interleaved.
     const __m256d l01 = _mm256_loadu_pd(&limits[k].stretch_m),
                   l23 = _mm256_loadu_pd(&limits[k + 2].stretch_m);
