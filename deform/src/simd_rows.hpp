@@ -1,7 +1,10 @@
 #pragma once
 // Four points of an array of Eigen::Vector3d as three AVX2 columns (x, y, z of each in its lane) and back,
-// for the four-wide passes (sweep_wide.cpp, prediction.cpp). Each point is read as it is written, (x, y)
-// then z: a load spanning two earlier stores would wait for them to retire instead of taking their data.
+// for the four-wide passes (sweep_wide.cpp, prediction.cpp). Four points anywhere (loadPoints4) are read
+// as they are written, (x, y) then z: a load spanning two earlier stores would wait for them to retire
+// instead of taking their data. Four points in a row (loadRun4, storeRun4) are read and written as three
+// rows of four coordinates, by the passes that go through the points in order and whose points were last
+// written a whole pass before.
 #include <Eigen/Core>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))

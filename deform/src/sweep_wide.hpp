@@ -1,10 +1,10 @@
 #pragma once
 // Distance constraints (edges, bends) swept four at a time where four neighbours in the sweep share no
 // point, eight (two fours, loaded before either is stored) where eight do, and thirty-two in stages where
-// thirty-two do (each stage over all of them before the next: their square roots and divisions overlap). Such
-// projections commute, so projecting them side by side, each in its own SIMD lane with the operations of
-// projectDistance in the same order (no fused multiply-add), gives the one-by-one Gauss-Seidel sweep's result
-// to the bit (the test `the wide sweep...`). AVX2, chosen at run time; the scalar sweep elsewhere.
+// thirty-two do (each stage over all of them before the next: their square roots and divisions overlap).
+// Such projections commute, so projecting them side by side, each in its own SIMD lane with the operations
+// of projectDistance in the same order (no fused multiply-add), gives the one-by-one Gauss-Seidel sweep's
+// result to the bit (the test `the wide sweep...`). AVX2, chosen at run time; the scalar sweep elsewhere.
 #include <deform/constraints.hpp>
 #include <deform/solver_params.hpp>
 
