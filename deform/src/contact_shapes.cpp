@@ -10,6 +10,8 @@
 #include <cmath>
 #include <string>
 
+#include "support_wide.hpp"
+
 namespace deform {
 namespace {
 
@@ -239,13 +241,7 @@ bool outsideBox(const ConvexSupportShape& shape, const Eigen::Vector3d& low_m, c
 
 Eigen::Vector3d ConvexPoints::support(const void* user, const Eigen::Vector3d& direction) {
   const auto& points = static_cast<const ConvexPoints*>(user)->points_m_;
-  std::size_t best = 0;
-  double best_dot = points[0].dot(direction);
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const double d = points[i].dot(direction);
-    if (d > best_dot) best_dot = d, best = i;
-  }
-  return points[best];
+  return points[farthestAlong(points.data(), points.size(), direction, true)];
 }
 
 void checkContactShape(const ContactShape& shape, const char* field_name) {

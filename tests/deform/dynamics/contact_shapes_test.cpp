@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <deform/contact_shapes.hpp>
 #include <deform/error.hpp>
+#include <support_wide.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -288,4 +289,46 @@ TEST_CASE("a shape called Lipschitz reports a depth that moves no faster than th
   CHECK_FALSE(distanceIsLipschitz(HalfSpaceShape{{0, 0, 1}, 0}));
   CHECK_FALSE(distanceIsLipschitz(ConvexSupportShape{}));
   CHECK_FALSE(distanceIsLipschitz(BoxShape{{0, 0, 0}, 2.0 * Eigen::Matrix3d::Identity(), {1, 1, 1}}));
+}
+
+TEST_CASE("a point set's support four at a time is the one-by-one scan's point, ties and all", "[dynamics]") {
+  // Random sets of 1 to 41 points (n mod 4 all four ways, fewer than the wide path takes); some sets of
+  // few distinct points repeated, so that ties are common, and directions along the axes, where points
+  // of a box tie by construction.
+  std::mt19937 random(23);
+  std::uniform_real_distribution<double> u(-2, 2);
+  std::uniform_int_distribution<int> count(1, 41);
+  std::size_t wide_differs = 0, ties = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const std::size_t n = static_cast<std::size_t>(count(random));
+    std::vector<Eigen::Vector3d> points;
+    if (trial % 3 == 0) {
+      for (std::size_t i = 0; i < n; ++i)  // corners of a unit box: many equal products
+        points.emplace_back(random() % 2, random() % 2, random() % 2);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) points.emplace_back(u(random), u(random), u(random));
+    }
+    const Eigen::Vector3d direction =
+        trial % 2 == 0 ? Eigen::Vector3d::Unit(trial % 3) : Eigen::Vector3d(u(random), u(random), u(random));
+    const std::size_t one = farthestAlong(points.data(), n, direction, false);
+    const std::size_t four = farthestAlong(points.data(), n, direction, true);
+    // The scan's answer: the first point of largest product.
+    double largest = -HUGE_VAL;
+    for (const auto& p : points) largest = std::max(largest, p.dot(direction));
+    std::size_t first = 0;
+    while (points[first].dot(direction) < largest) ++first;
+    std::size_t at_largest = 0;
+    for (const auto& p : points) at_largest += p.dot(direction) == largest;
+    ties += at_largest > 1;
+    REQUIRE(one == first);
+    wide_differs += four != one;
+  }
+  CHECK(wide_differs == 0);
+  CHECK(ties > 1000);
+  // A direction whose products are not finite: the one-by-one scan's answer too.
+  std::vector<Eigen::Vector3d> points(13, Eigen::Vector3d(1, 2, 3));
+  points[5] = {4, 5, 6};
+  const Eigen::Vector3d nan(std::nan(""), 0, 0);
+  CHECK(farthestAlong(points.data(), points.size(), nan, true) ==
+        farthestAlong(points.data(), points.size(), nan, false));
 }
