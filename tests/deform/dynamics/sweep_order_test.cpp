@@ -99,6 +99,19 @@ StepInputs pressed(const BodySettings& s, int step) {
   return in;
 }
 
+/// The share of constraints the wide sweep takes `length` at a time, given disjointRuns' lengths.
+double shareInRuns(const std::vector<uint8_t>& runs, std::size_t length) {
+  std::size_t taken = 0;
+  for (std::size_t k = 0; k < runs.size();)
+    if (runs[k] >= length) {
+      taken += length;
+      k += length;
+    } else {
+      ++k;
+    }
+  return static_cast<double>(taken) / static_cast<double>(runs.size());
+}
+
 }  // namespace
 
 TEST_CASE("the sweep keeps every constraint, its halves share no point, and neighbours rarely share one",
@@ -183,16 +196,7 @@ TEST_CASE("the sweep by level gives the windowed sweep's positions to the bit, i
   auto inEights = [&](const SweepOrder& order) {
     std::vector<uint32_t> interleaved;
     for (const uint32_t k : order.order) interleaved.insert(interleaved.end(), {pairs[k][0], pairs[k][1]});
-    const std::vector<uint8_t> disjoint = disjointRuns(interleaved);
-    std::size_t eights = 0;
-    for (std::size_t k = 0; k < disjoint.size();)
-      if (disjoint[k] >= 8) {
-        eights += 8;
-        k += 8;
-      } else {
-        ++k;
-      }
-    return static_cast<double>(eights) / static_cast<double>(disjoint.size());
+    return shareInRuns(disjointRuns(interleaved), 8);
   };
   // And how many of them share a point with one of the eight before them (whose stores they wait for).
   auto waiting = [&](const SweepOrder& order) {
@@ -257,16 +261,7 @@ TEST_CASE("a 2000-point body's edges are mostly swept thirty-two at a time", "[d
   const auto settings = makeSettings(sedanControlMesh(2000), 1500.0, BodyDescription{});
   std::vector<uint32_t> pairs;
   for (const EdgeConstraint& e : settings->edges) pairs.insert(pairs.end(), {e.a, e.b});
-  const std::vector<uint8_t> runs = disjointRuns(pairs);
-  std::size_t staged = 0;
-  for (std::size_t k = 0; k < runs.size();)
-    if (runs[k] >= 32) {
-      staged += 32;
-      k += 32;
-    } else {
-      ++k;
-    }
-  const double share = static_cast<double>(staged) / static_cast<double>(runs.size());
+  const double share = shareInRuns(disjointRuns(pairs), 32);
   WARN("2,000-point sedan's edges in runs of 32: " << 100 * share << " %");
   CHECK(share > 0.9);
 }
