@@ -116,8 +116,11 @@ uint32_t DeformableBody::findContacts(const std::vector<ContactShape>& shapes, c
       uint32_t found_inside = 0;
       Penetration p;
       const auto [begin, end] = halfOf(x.size(), half);
-      for (auto i = static_cast<uint32_t>(begin); i < end; ++i)
-        if (!apart(x[i]) && penetration(shape, x[i], p, params_.contact_margin_m)) {
+      std::vector<uint32_t>& near = near_shape_of_half_[half];
+      near.clear();
+      apart.listNear(x.data(), begin, end, params_.wide_sweep, near);
+      for (const uint32_t i : near)
+        if (penetration(shape, x[i], p, params_.contact_margin_m)) {
           // Only a point that moved further than its depth relative to the obstacle this substep can have
           // come in by another face than the nearest (the entry face is at most that travel away).
           const Eigen::Vector3d start_m =

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <variant>
 #include <vector>
 
@@ -108,6 +110,10 @@ class SurelyApart {
     }
     return false;
   }
+  /// Appends to `near`, in order, each point i of [begin, end) not surely apart (operator() false):
+  /// four at a time where `wide` and the machine can, with the same answers.
+  void listNear(const Eigen::Vector3d* points_m, std::size_t begin, std::size_t end, bool wide,
+                std::vector<uint32_t>& near) const;
 
  private:
   enum class Kind { Unsure, Plane, Ball };

@@ -263,6 +263,7 @@ class DeformableBody {
   std::vector<uint8_t> column_bottomed_;
   std::vector<ContactPoint> contacts_;
   std::vector<ContactPoint> contacts_of_half_[2];  ///< findContacts' scratch: each half's, in point order
+  std::vector<uint32_t> near_shape_of_half_[2];    ///< findContacts' scratch: the points not surely apart
   std::vector<FaceContact> face_contacts_;
   /// A point an obstacle's contact moved this substep (capDeviation): the obstacle and its normal.
   struct HeldPoint {

@@ -332,3 +332,34 @@ TEST_CASE("a point set's support four at a time is the one-by-one scan's point, 
   CHECK(farthestAlong(points.data(), points.size(), nan, true) ==
         farthestAlong(points.data(), points.size(), nan, false));
 }
+
+TEST_CASE("the points near a shape, listed four at a time, are those the one-by-one test keeps",
+          "[dynamics]") {
+  // A plane, a ball (sphere, capsule), and a support shape (every point listed); ranges that start and end
+  // off a multiple of four.
+  const std::vector<ContactShape> shapes = {
+      HalfSpaceShape{{0.3, -1.2, 2.0}, 0.4},
+      SphereShape{{0.1, 0.2, -0.3}, 0.6},
+      CapsuleShape{{0, 0, -0.5}, {0.2, 0.1, 0.6}, 0.3},
+  };
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<Eigen::Vector3d> points(1003);
+  for (auto& p : points) p = {u(random), u(random), u(random)};
+  for (const ContactShape& shape : shapes) {
+    const SurelyApart apart(shape, 0.01);
+    for (const std::size_t begin : {std::size_t{0}, std::size_t{3}})
+      for (const std::size_t end : {std::size_t{1003}, std::size_t{998}}) {
+        std::vector<uint32_t> one, four, expected;
+        apart.listNear(points.data(), begin, end, false, one);
+        apart.listNear(points.data(), begin, end, true, four);
+        for (std::size_t i = begin; i < end; ++i)
+          if (!apart(points[i])) expected.push_back(static_cast<uint32_t>(i));
+        REQUIRE(one == expected);
+        REQUIRE(four == expected);
+        // Both kinds of answer occur.
+        CHECK(expected.size() > 10);
+        CHECK(expected.size() + 10 < end - begin);
+      }
+  }
+}
