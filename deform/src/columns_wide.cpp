@@ -13,7 +13,7 @@
 namespace deform {
 namespace {
 
-// The records read as pairs of doubles four at a time (splitPairs4).
+// The records read as pairs of doubles four at a time (splitPairs4, simd_rows.hpp).
 static_assert(sizeof(DistanceFactors) == 16 && offsetof(DistanceFactors, inverse_denominator) == 8);
 static_assert(sizeof(YieldLimits) == 16 && offsetof(YieldLimits, shorten_m) == 8);
 static_assert(sizeof(SpokeConstraint) == 16 && offsetof(SpokeConstraint, compliance_m_per_N) == 8);
@@ -138,13 +138,6 @@ __attribute__((target("avx2"))) inline void storePoints(const Points4& p, Eigen:
     storeRun4(p, a + k[0]);
   else
     storePoints4(p, a[k[0]], a[k[1]], a[k[2]], a[k[3]]);
-}
-/// The two doubles of four 16-byte records from k[0] on (kRun), de-interleaved: first, second.
-__attribute__((target("avx2"))) inline void splitPairs4(const double* record, __m256d& first,
-                                                        __m256d& second) {
-  const __m256d r01 = _mm256_loadu_pd(record), r23 = _mm256_loadu_pd(record + 4);
-  first = _mm256_permute4x64_pd(_mm256_unpacklo_pd(r01, r23), 0xD8);
-  second = _mm256_permute4x64_pd(_mm256_unpackhi_pd(r01, r23), 0xD8);
 }
 
 /// Spokes order[j .. j + 3], each lane spokeOne's operations in their order.
@@ -311,11 +304,8 @@ __attribute__((target("avx2"))) std::size_t notSurelyElasticAvx2(
                                              x[spokes[k + 3].point]);
     const Points4 elastic = minus(minus(p, shift), loadRun4(rest_m + k));
     const __m256d along = dot4(loadRun4(normals + k), elastic);
-    // The limits (stretch, shorten) of four columns, de-interleaved.
-    const __m256d l01 = _mm256_loadu_pd(&limits[k].stretch_m),
-                  l23 = _mm256_loadu_pd(&limits[k + 2].stretch_m);
-    const __m256d stretch = _mm256_permute4x64_pd(_mm256_unpacklo_pd(l01, l23), 0xD8);
-    const __m256d shorten = _mm256_permute4x64_pd(_mm256_unpackhi_pd(l01, l23), 0xD8);
+    __m256d stretch, shorten;  // the limits of four columns
+    splitPairs4(&limits[k].stretch_m, stretch, shorten);
     const __m256d yield_m =
         _mm256_blendv_pd(stretch, shorten, _mm256_cmp_pd(along, _mm256_setzero_pd(), _CMP_LT_OQ));
     const __m256d surely = _mm256_cmp_pd(_mm256_mul_pd(dot4(elastic, elastic), margin),

@@ -1,10 +1,10 @@
 #pragma once
 // Four points of an array of Eigen::Vector3d as three AVX2 columns (x, y, z of each in its lane) and back,
-// for the four-wide passes (sweep_wide.cpp, prediction.cpp). Four points anywhere (loadPoints4) are read
-// as they are written, (x, y) then z: a load spanning two earlier stores would wait for them to retire
-// instead of taking their data. Four points in a row (loadRun4, storeRun4) are read and written as three
-// rows of four coordinates, by the passes that go through the points in order and whose points were last
-// written a whole pass before.
+// for the four-wide passes (sweep_wide.cpp, columns_wide.cpp, prediction.cpp and others). Four points
+// anywhere (loadPoints4) are read as they are written, (x, y) then z: a load spanning two earlier stores
+// would wait for them to retire instead of taking their data. Four points in a row (loadRun4, storeRun4) are
+// read and written as three rows of four coordinates, by the passes that go through the points in order and
+// whose points were last written a whole pass before.
 #include <Eigen/Core>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -75,6 +75,15 @@ __attribute__((target("avx2"))) inline void storeRun4(const Points4& p, Eigen::V
   _mm256_storeu_pd(d, _mm256_permute2f128_pd(xy02, zx13, 0x20));
   _mm256_storeu_pd(d + 4, _mm256_permute2f128_pd(yz13, xy02, 0x30));
   _mm256_storeu_pd(d + 8, _mm256_permute2f128_pd(zx13, yz13, 0x31));
+}
+
+/// Four consecutive records of two doubles each (16 bytes: a pair of fields) from `record` on,
+/// de-interleaved: the first fields of the four, and the second.
+__attribute__((target("avx2"))) inline void splitPairs4(const double* record, __m256d& first,
+                                                        __m256d& second) {
+  const __m256d r01 = _mm256_loadu_pd(record), r23 = _mm256_loadu_pd(record + 4);
+  first = _mm256_permute4x64_pd(_mm256_unpacklo_pd(r01, r23), 0xD8);
+  second = _mm256_permute4x64_pd(_mm256_unpackhi_pd(r01, r23), 0xD8);
 }
 
 /// A 3-vector as a row (x, y, z, 0), and back: a running sum of vectors held in one register.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "simd_rows.hpp"
 
@@ -36,6 +37,10 @@ std::vector<uint8_t> disjointRuns(const std::vector<uint32_t>& pairs) {
 }
 
 namespace {
+
+// The records read as pairs of doubles four at a time (splitPairs4, simd_rows.hpp).
+static_assert(sizeof(DistanceFactors) == 16 && offsetof(DistanceFactors, inverse_denominator) == 8);
+static_assert(sizeof(ElasticBand) == 16 && offsetof(ElasticBand, longest_m2) == 8);
 
 template <bool kLimited>
 [[gnu::always_inline]] inline void projectOne(const DistanceSweep& s, std::size_t k) {
@@ -85,11 +90,8 @@ template <bool kLimited>
 __attribute__((target("avx2"))) inline Multipliers4 multipliersFour(const DistanceSweep& s, std::size_t k,
                                                                     __m256d length) {
   const __m256d c = _mm256_sub_pd(length, _mm256_loadu_pd(s.rest_m + k));
-  // The factors (alpha~, 1 / denominator) of four constraints, de-interleaved.
-  const __m256d f01 = _mm256_loadu_pd(&s.factors[k].alpha_tilde);
-  const __m256d f23 = _mm256_loadu_pd(&s.factors[k + 2].alpha_tilde);
-  const __m256d alpha = _mm256_permute4x64_pd(_mm256_unpacklo_pd(f01, f23), 0xD8);
-  const __m256d inverse = _mm256_permute4x64_pd(_mm256_unpackhi_pd(f01, f23), 0xD8);
+  __m256d alpha, inverse;  // the factors (alpha~, 1 / denominator) of four constraints
+  splitPairs4(&s.factors[k].alpha_tilde, alpha, inverse);
   const __m256d lambda = _mm256_loadu_pd(s.lambda + k);
   const __m256d negative_c = _mm256_xor_pd(c, _mm256_set1_pd(-0.0));
   __m256d next =
@@ -167,7 +169,7 @@ constexpr std::size_t kStagedFours = 8;
 
 /// Constraints k .. k + 4 kStagedFours - 1 (disjoint), each stage over all of them before the next: their
 /// square roots, then their divisions, issue back to back instead of each four's waiting on its own
-/// (paired, 4,000 points 4 x 1: the edges' sweep 0.7 of the eights' time). Only independent operations
+/// (paired, 4,000 points 4 x 1: the edges' sweep 0.7-0.8 of the eights' time). Only independent operations
 /// change order (a multiplier is stored before the points of the fours before it), so the result is
 /// projectFourUnstored's to the bit.
 template <bool kLimited>
@@ -231,11 +233,9 @@ __attribute__((target("avx2"))) static std::size_t outsideBandsAvx2(
     const __m256d dx = _mm256_sub_pd(a.x, b.x), dy = _mm256_sub_pd(a.y, b.y), dz = _mm256_sub_pd(a.z, b.z);
     const __m256d l2 =
         _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
-    // The bands (shortest, longest) of four constraints, de-interleaved; holds: shortest < l2 < longest.
-    const __m256d b01 = _mm256_loadu_pd(&bands[k].shortest_m2);
-    const __m256d b23 = _mm256_loadu_pd(&bands[k + 2].shortest_m2);
-    const __m256d shortest = _mm256_permute4x64_pd(_mm256_unpacklo_pd(b01, b23), 0xD8);
-    const __m256d longest = _mm256_permute4x64_pd(_mm256_unpackhi_pd(b01, b23), 0xD8);
+    // The bands (shortest, longest) of four constraints; holds: shortest < l2 < longest.
+    __m256d shortest, longest;
+    splitPairs4(&bands[k].shortest_m2, shortest, longest);
     const __m256d holds =
         _mm256_and_pd(_mm256_cmp_pd(l2, shortest, _CMP_GT_OQ), _mm256_cmp_pd(l2, longest, _CMP_LT_OQ));
     const int outside = ~_mm256_movemask_pd(holds) & 0xF;
