@@ -39,6 +39,7 @@ struct BenchStepFlags {
   uint32_t threads = 1;           ///< deform::SolverParams::threads
   bool narrow = false;            ///< deform::SolverParams::wide_sweep off
   std::string peer;  ///< "" or "bullet": the same body in Bullet's btSoftBody, measured after ours
+  bool against_one_thread = false;  ///< also one thread against `threads`, paired in one process
   bool json = false;
 };
 
@@ -53,6 +54,9 @@ void check(const BenchStepFlags& f) {
   if (!(std::isfinite(f.dt_s) && f.dt_s > 0)) throw deform::InputError("--dt: must be finite and > 0");
   if (!(std::isfinite(f.mass_kg) && f.mass_kg > 0))
     throw deform::InputError("--mass-kg: must be finite and > 0");
+  if (f.against_one_thread && f.threads < 2)
+    throw deform::InputError("--against-one-thread: needs --threads 2 or more (got " +
+                             std::to_string(f.threads) + ")");
   if (!f.peer.empty() && f.peer != "bullet")
     throw deform::InputError("--peer: only \"bullet\" (got \"" + f.peer + "\")");
 }
@@ -120,8 +124,33 @@ void runBenchStep(const BenchStepFlags& f) {
                  {"finite", peer.finite},
                  {"ratio", ns_per / peer.ns_per_constraint_iteration}};
   }
+  ThreadSpeedup speedup;
+  if (f.against_one_thread) {
+    speedup = measureThreadSpeedup(settings, options);
+    const double per_ns = 1e3 / (static_cast<double>(constraints) * f.substeps * f.iterations);
+    char one_hash[17];
+    std::snprintf(one_hash, sizeof one_hash, "%016llx",
+                  static_cast<unsigned long long>(speedup.one_thread_hash));
+    char many_hash[17];
+    std::snprintf(many_hash, sizeof many_hash, "%016llx",
+                  static_cast<unsigned long long>(speedup.mixed_hash));
+    r["against_one_thread"] = {
+        {"one_thread_ns_per_constraint_iteration", speedup.one_thread_wall_us * per_ns},
+        {"ns_per_constraint_iteration", speedup.many_threads_wall_us * per_ns},
+        {"speedup", speedup.speedup},
+        {"speedup_lower_quartile", speedup.speedup_low},
+        {"speedup_upper_quartile", speedup.speedup_high},
+        {"blocks", speedup.blocks},
+        {"one_thread_state_hash", one_hash},
+        {"mixed_state_hash", many_hash},
+        {"same_state_hash", speedup.one_thread_hash == speedup.mixed_hash}};
+  }
+  const bool hashes_differ = f.against_one_thread && speedup.one_thread_hash != speedup.mixed_hash;
   if (f.json) {
     std::printf("%s\n", r.dump(2).c_str());
+    if (hashes_differ)
+      throw CommandFailure("bench step: the state differs between 1 and " + std::to_string(f.threads) +
+                           " threads");
     return;
   }
   std::printf("deformation step: %zu control points, %zu constraints (%zu edges, %zu spokes, %zu bends)\n",
@@ -144,6 +173,21 @@ void runBenchStep(const BenchStepFlags& f) {
         peer["nodes"].get<std::size_t>(), peer["links"].get<std::size_t>(), peer["us_per_step"].get<double>(),
         peer["ns_per_constraint_iteration"].get<double>(), peer["finite"].get<bool>() ? "" : " (DIVERGED)",
         peer["ratio"].get<double>());
+  }
+  if (f.against_one_thread) {
+    const auto& a = r["against_one_thread"];
+    std::printf(
+        "  against one thread, in turn in blocks of 20 steps (%zu pairs, wall time): 1 thread %.2f ns, %u "
+        "threads "
+        "%.2f ns per constraint per iteration\n  speed-up %.2fx (quartiles %.2f-%.2f); state hash %s after "
+        "the mixed steps, %s on one thread throughout (%s)\n",
+        speedup.blocks, a["one_thread_ns_per_constraint_iteration"].get<double>(), f.threads,
+        a["ns_per_constraint_iteration"].get<double>(), speedup.speedup, speedup.speedup_low,
+        speedup.speedup_high, a["mixed_state_hash"].get<std::string>().c_str(),
+        a["one_thread_state_hash"].get<std::string>().c_str(), hashes_differ ? "DIFFERENT" : "the same");
+    if (hashes_differ)
+      throw CommandFailure("bench step: the state differs between 1 and " + std::to_string(f.threads) +
+                           " threads");
   }
 }
 
@@ -172,6 +216,11 @@ void registerBenchStepCommand(CLI::App& bench) {
                    "Threads sweeping the body (deform SolverParams::threads: 1, or 2 for its halves)")
       ->capture_default_str();
   step->add_option("--peer", flags->peer, "Also run the same body in a peer engine: bullet (btSoftBody)");
+  step->add_flag(
+      "--against-one-thread", flags->against_one_thread,
+      "With --threads 2: also step the body on one thread and on --threads in turn, in blocks of 20 "
+      "steps in this process, and print the speed-up (median of the blocks' ratios) and both "
+      "state hashes");
   step->add_flag("--narrow", flags->narrow,
                  "One constraint and point at a time (deform SolverParams::wide_sweep off; the same bits)");
   step->add_flag("--json", flags->json, "Print one JSON object");

@@ -37,4 +37,24 @@ struct StepCostOptions {
 StepCost measureStepCost(const std::shared_ptr<const deform::BodySettings>& settings,
                          const StepCostOptions& options);
 
+/// One thread against `threads` on the same body, measured in one process: the body under the wall steps
+/// in blocks of `block` steps on one thread and on `threads` in turn (which comes first alternates), so
+/// that a neighbour's load on a shared machine falls on both alike. Each pair of blocks gives one ratio
+/// of their median wall times per step; the speed-up is the median of the ratios.
+struct ThreadSpeedup {
+  double one_thread_wall_us = 0;    ///< median over all one-thread steps [us]
+  double many_threads_wall_us = 0;  ///< the same on `threads` threads [us]
+  double speedup = 0;               ///< median of the pairs' ratios (one thread / many)
+  double speedup_low = 0;           ///< their lower quartile
+  double speedup_high = 0;          ///< their upper quartile
+  std::size_t blocks = 0;           ///< pairs measured
+  /// deform::hashState after the mixed steps, and after as many steps on one thread throughout: equal
+  /// when the result does not depend on the thread count.
+  uint64_t mixed_hash = 0;
+  uint64_t one_thread_hash = 0;
+};
+
+ThreadSpeedup measureThreadSpeedup(const std::shared_ptr<const deform::BodySettings>& settings,
+                                   const StepCostOptions& options, std::size_t block = 20);
+
 }  // namespace sandbox
