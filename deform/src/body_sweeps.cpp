@@ -191,7 +191,8 @@ void DeformableBody::sweepConstraints() {
         bendsOf(half);
       }
 #pragma omp barrier
-#pragma omp single
+      // The end of the team waits for it: no barrier of its own.
+#pragma omp single nowait
       bendsOf(2);
     }
   } else {

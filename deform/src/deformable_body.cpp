@@ -404,12 +404,17 @@ void DeformableBody::beginSubstep(uint32_t k) {
   prediction.decay = decay;
   prediction.inertial_scale = scale;
   prediction.inertial = inertial;
+  // Each half also clears the edges' and bends' multipliers its sweep writes (those across the cut with
+  // half 0), so on two threads they are in the cache of the thread that uses them, and the columns' (or
+  // spokes') by index, which is near the sweep's halves (BodySettings::column_order): Gauss-Seidel sweeps,
+  // each constraint kind in its own loop, whose multipliers start at zero each substep.
   PredictionSums sums[2];
   forEachHalf(params_.threads, [&](int half) {
     PredictionSums sum;  // a local, stored once: the two halves' sums share a cache line
     const auto [begin, end] = halfOf(n, half);
     predictPoints(prediction, begin, end, params_.wide_sweep, sum);
     sums[half] = sum;
+    clearMultipliers(half);
   });
   for (const PredictionSums& sum : sums) {
     report.damping_loss_J += sum.damping_loss_J;
@@ -421,30 +426,27 @@ void DeformableBody::beginSubstep(uint32_t k) {
   core += h * core_velocity_mps_;
 
   report.contact_points += findContacts(placed_, inputs, h);
+}
 
-  // Gauss-Seidel sweeps, each constraint kind in its own loop; multipliers start at zero each substep.
-  // Each half clears the edges' and bends' multipliers its sweep writes (those across the cut with half
-  // 0), so on two threads they are in the cache of the thread that uses them; the columns' (or spokes')
-  // by index, which is near the sweep's halves (BodySettings::column_order).
-  forEachHalf(params_.threads, [&](int half) {
-    const auto clear = [half](auto& lambda, const std::array<uint32_t, 2>& half_end) {
-      using Value = typename std::decay_t<decltype(lambda)>::value_type;
-      const auto begin = lambda.begin();
-      if (half == 0) {
-        std::fill(begin, begin + half_end[0], Value{});
-        std::fill(begin + half_end[1], lambda.end(), Value{});
-      } else {
-        std::fill(begin + half_end[0], begin + half_end[1], Value{});
-      }
-    };
-    clear(edge_lambda_, settings.edge_half_end);
-    clear(bend_lambda_, settings.bend_half_end);
-    const auto [begin, end] = halfOf(settings.spokes.size(), half);
-    if (settings.anchored_columns)
-      std::fill(column_lambda_.begin() + begin, column_lambda_.begin() + end, Eigen::Vector3d::Zero());
-    else
-      std::fill(spoke_lambda_.begin() + begin, spoke_lambda_.begin() + end, 0.0);
-  });
+void DeformableBody::clearMultipliers(int half) {
+  const BodySettings& settings = *settings_;
+  const auto clear = [half](auto& lambda, const std::array<uint32_t, 2>& half_end) {
+    using Value = typename std::decay_t<decltype(lambda)>::value_type;
+    const auto begin = lambda.begin();
+    if (half == 0) {
+      std::fill(begin, begin + half_end[0], Value{});
+      std::fill(begin + half_end[1], lambda.end(), Value{});
+    } else {
+      std::fill(begin + half_end[0], begin + half_end[1], Value{});
+    }
+  };
+  clear(edge_lambda_, settings.edge_half_end);
+  clear(bend_lambda_, settings.bend_half_end);
+  const auto [begin, end] = halfOf(settings.spokes.size(), half);
+  if (settings.anchored_columns)
+    std::fill(column_lambda_.begin() + begin, column_lambda_.begin() + end, Eigen::Vector3d::Zero());
+  else
+    std::fill(spoke_lambda_.begin() + begin, spoke_lambda_.begin() + end, 0.0);
 }
 
 void DeformableBody::settleSubstep() {

@@ -129,6 +129,8 @@ class DeformableBody {
   void settleSubstep();
   /// Velocities from positions, and the substep's sums into report_.
   void endSubstep();
+  /// Zeroes the multipliers of half `half` of the sweep (0: also those across the cut).
+  void clearMultipliers(int half);
   /// The core re-centred, the sleep bookkeeping; hands back the step's report.
   StepReport endStep();
   template <bool kLimited>
