@@ -121,7 +121,7 @@ ThreadSpeedup measureThreadSpeedup(const std::shared_ptr<const deform::BodySetti
   out.speedup = median(ratios);
   out.speedup_low = quantile(ratios, 0.25);
   out.speedup_high = quantile(ratios, 0.75);
-  out.blocks = ratios.size();
+  out.pairs = ratios.size();
   out.mixed_hash = deform::hashState(body.state());
   // The same steps on one thread throughout (not timed).
   deform::DeformableBody reference(settings, paramsOf(options, 1));

@@ -47,7 +47,7 @@ struct ThreadSpeedup {
   double speedup = 0;               ///< median of the pairs' ratios (one thread / many)
   double speedup_low = 0;           ///< their lower quartile
   double speedup_high = 0;          ///< their upper quartile
-  std::size_t blocks = 0;           ///< pairs measured
+  std::size_t pairs = 0;            ///< pairs of blocks measured
   /// deform::hashState after the mixed steps, and after as many steps on one thread throughout: equal
   /// when the result does not depend on the thread count.
   uint64_t mixed_hash = 0;
