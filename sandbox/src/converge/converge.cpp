@@ -33,6 +33,10 @@ struct ConvergeRow {
   /// measurement predates it [m]; and that crush relative to the finest level's, minus one [1].
   double surface_crush_m = std::nan("");
   double surface_change_from_finest = 0;
+  /// The obstacle's work on the body (summary.json energy.contact_work_J): NaN when the measurement
+  /// predates it [J]; and that work relative to the finest level's, minus one [1].
+  double contact_work_J = std::nan("");
+  double contact_work_change_from_finest = 0;
   double change_from_finest = 0;         ///< residual crush relative to the finest level's, minus one [1]
   double volume_change_from_finest = 0;  ///< crushed volume relative to the finest level's, minus one [1]
 };
@@ -52,6 +56,7 @@ ConvergeRow rowOf(const SweepCase& c, const nlohmann::json& m) {
   row.kinetic_initial_J = number("kinetic_initial_J");
   row.deform_ms = number("deform_ms");
   if (m.contains("surface_residual_crush_m")) row.surface_crush_m = number("surface_residual_crush_m");
+  if (m.contains("contact_work_J")) row.contact_work_J = number("contact_work_J");
   // Written before the profile was measured: none (the tables leave it out).
   const auto profile = m.find("crush_profile_m");
   if (profile != m.end() && profile->is_array()) {
@@ -98,17 +103,19 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
   CsvTable csv({"scene", "control_points", "residual_crush_m", "max_residual_crush_m", "max_dynamic_crush_m",
                 "max_dent_m", "restitution", "plastic_work_J", "kinetic_initial_J", "change_from_finest",
                 "deform_ms", "crushed_volume_m3", "volume_change_from_finest", "crush_height_m",
-                "crush_profile_m", "surface_residual_crush_m", "surface_change_from_finest"});
+                "crush_profile_m", "surface_residual_crush_m", "surface_change_from_finest", "contact_work_J",
+                "contact_work_change_from_finest"});
   std::ostringstream md;
   md << "Residual crush (six-station average) and crushed volume (the control surface's, at rest less now) "
         "against the level of detail, and the same six stations on the car's own surface (its render mesh "
         "as the skin moves it, at the height of its most protruding vertex: the same rest shape at every "
-        "level); each change is against the finest level.\n";
+        "level); the energy the obstacle put into the body (its work on the body in the chassis's frame); "
+        "each change is against the finest level.\n";
   for (const std::string& name : names) {
     md << "\n### " << name << "\n\n| control points | residual crush m | largest m | dynamic crush m "
        << "| deepest dent m | restitution | plastic / impact energy | change from finest | crushed volume L "
-       << "| its change | car's surface: crush m | its change | deform ms |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "| its change | car's surface: crush m | its change | into the body kJ | its change | deform ms |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConvergeRow& r : rows) {
       if (r.scene != name) continue;
       csv.addRow({r.scene, std::to_string(r.control_points), CsvTable::number(r.residual_crush_m),
@@ -118,7 +125,8 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                   CsvTable::number(r.change_from_finest), CsvTable::number(r.deform_ms),
                   CsvTable::number(r.crushed_volume_m3), CsvTable::number(r.volume_change_from_finest),
                   CsvTable::number(r.crush_height_m), profileText(r.crush_profile_m, " "),
-                  CsvTable::number(r.surface_crush_m), CsvTable::number(r.surface_change_from_finest)});
+                  CsvTable::number(r.surface_crush_m), CsvTable::number(r.surface_change_from_finest),
+                  CsvTable::number(r.contact_work_J), CsvTable::number(r.contact_work_change_from_finest)});
       md << "| " << r.control_points << " | " << CsvTable::fixed(r.residual_crush_m, 3) << " | "
          << CsvTable::fixed(r.max_residual_crush_m, 3) << " | " << CsvTable::fixed(r.max_dynamic_crush_m, 3)
          << " | " << CsvTable::fixed(r.max_dent_m, 3) << " | " << CsvTable::fixed(r.restitution, 3) << " | "
@@ -133,6 +141,13 @@ void writeOutputs(const std::vector<ConvergeRow>& rows, const std::vector<std::s
                  ? std::string("-")
                  : (r.surface_change_from_finest >= 0 ? "+" : "") +
                        CsvTable::fixed(100 * r.surface_change_from_finest, 1) + " %")
+         << " | "
+         << (std::isnan(r.contact_work_J) ? std::string("-") : CsvTable::fixed(1e-3 * r.contact_work_J, 1))
+         << " | "
+         << (std::isnan(r.contact_work_J)
+                 ? std::string("-")
+                 : (r.contact_work_change_from_finest >= 0 ? "+" : "") +
+                       CsvTable::fixed(100 * r.contact_work_change_from_finest, 1) + " %")
          << " | " << CsvTable::fixed(r.deform_ms, 0) << " |\n";
     }
     md << profileTable(rows, name);
@@ -227,18 +242,21 @@ void writeConvergeReport(const SweepPlan& plan, const std::vector<nlohmann::json
   }
   std::fflush(stdout);
   for (const std::string& name : names) {
-    double finest = 0, finest_volume = 0, finest_surface = 0;  // the last (finest) level of the scene
+    // The last (finest) level of the scene.
+    double finest = 0, finest_volume = 0, finest_surface = 0, finest_work = 0;
     for (const ConvergeRow& r : rows)
       if (r.scene == name) {
         finest = r.residual_crush_m;
         finest_volume = r.crushed_volume_m3;
         finest_surface = r.surface_crush_m;
+        finest_work = r.contact_work_J;
       }
     for (ConvergeRow& r : rows) {
       if (r.scene != name) continue;
       r.change_from_finest = finest > 0 ? r.residual_crush_m / finest - 1.0 : 0.0;
       r.volume_change_from_finest = finest_volume > 0 ? r.crushed_volume_m3 / finest_volume - 1.0 : 0.0;
       r.surface_change_from_finest = finest_surface > 0 ? r.surface_crush_m / finest_surface - 1.0 : 0.0;
+      r.contact_work_change_from_finest = finest_work > 0 ? r.contact_work_J / finest_work - 1.0 : 0.0;
     }
   }
   std::filesystem::create_directories(dir);

@@ -46,6 +46,7 @@ nlohmann::json measureCrash(const std::string& scene, const std::vector<std::str
           {"restitution", m.restitution},
           {"plastic_work_J", m.energy.plastic_work_J},
           {"kinetic_initial_J", m.energy.kinetic_initial_J},
+          {"contact_work_J", m.energy.contact_work_J},
           {"diverged", m.diverged},
           {"state_hash", scenes::hashHex(run.stateHash())},
           {"physics_ms", run.times().physics_ms()},
