@@ -10,13 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <scenes/scene_run.hpp>
 
 #include "baselines/bullet_peer.hpp"
 #include "commands.hpp"
@@ -64,6 +64,48 @@ void check(const BenchStepFlags& f) {
     throw deform::InputError("--peer: only \"bullet\" (got \"" + f.peer + "\")");
 }
 
+/// The text form of `bench step`'s JSON object `r`.
+void printBenchStep(const BenchStepFlags& f, const nlohmann::ordered_json& r) {
+  const auto count = [&](const char* key) { return r[key].get<std::size_t>(); };
+  const auto number = [&](const char* key) { return r[key].get<double>(); };
+  std::printf("deformation step: %zu control points, %zu constraints (%zu edges, %zu spokes, %zu bends)\n",
+              count("control_points"), count("constraints"), count("edges"), count("spokes"), count("bends"));
+  std::printf("  %u substeps x %u iterations, dt %.6g s, wall 5 cm into the front (%zu points in contact)\n",
+              f.substeps, f.iterations, f.dt_s, count("contact_points"));
+  std::printf(
+      "  median %.2f us per step (thread CPU time; wall %.2f us), %.2f ns per constraint per iteration "
+      "(%s, %u thread%s, %zu steps); state hash %s\n",
+      number("us_per_step"), number("wall_us_per_step"), number("ns_per_constraint_iteration"),
+      f.threads > 1 ? "wall time" : "CPU time", f.threads, f.threads > 1 ? "s" : "", f.steps,
+      r["state_hash"].get<std::string>().c_str());
+  std::printf(
+      "  at the end: largest deviation from rest %.3f m, %zu of %zu points within 1 mm of their cap\n",
+      number("max_deviation_m"), count("points_at_cap"), count("control_points"));
+  if (r.contains("peer")) {
+    const auto& peer = r["peer"];
+    std::printf(
+        "  peer bullet: btSoftBody, %zu nodes, %zu links, no contact: %.2f us per step, %.2f ns per "
+        "constraint per iteration%s\n  ratio (ours / bullet) %.2f\n",
+        peer["nodes"].get<std::size_t>(), peer["links"].get<std::size_t>(), peer["us_per_step"].get<double>(),
+        peer["ns_per_constraint_iteration"].get<double>(), peer["finite"].get<bool>() ? "" : " (DIVERGED)",
+        peer["ratio"].get<double>());
+  }
+  if (r.contains("against_one_thread")) {
+    const auto& a = r["against_one_thread"];
+    std::printf(
+        "  against one thread, in turn in blocks of %zu steps (%zu pairs, wall time): 1 thread %.2f ns, %u "
+        "threads %.2f ns per constraint per iteration\n  speed-up %.2fx (quartiles %.2f-%.2f); state hash %s "
+        "after the mixed steps, %s on one thread throughout (%s)\n",
+        a["block_steps"].get<std::size_t>(), a["block_pairs"].get<std::size_t>(),
+        a["one_thread_ns_per_constraint_iteration"].get<double>(), f.threads,
+        a["ns_per_constraint_iteration"].get<double>(), a["speedup"].get<double>(),
+        a["speedup_lower_quartile"].get<double>(), a["speedup_upper_quartile"].get<double>(),
+        a["mixed_state_hash"].get<std::string>().c_str(),
+        a["one_thread_state_hash"].get<std::string>().c_str(),
+        a["same_state_hash"].get<bool>() ? "the same" : "DIFFERENT");
+  }
+}
+
 void runBenchStep(const BenchStepFlags& f) {
   check(f);
   const deform::VehicleModel model = deform::loadVehicleModel(f.mesh);
@@ -87,10 +129,6 @@ void runBenchStep(const BenchStepFlags& f) {
   options.wide_sweep = !f.narrow;
   const StepCost cost = measureStepCost(settings, options);
   const std::size_t constraints = settings->constraintCount();
-  const uint32_t contact_points = cost.contact_points;
-  const double median_us = cost.us_per_step;
-  const double median_wall_us = cost.wall_us_per_step;
-  const double ns_per = cost.ns_per_constraint_iteration;
 
   nlohmann::ordered_json r;
   r["mesh"] = f.mesh;
@@ -107,15 +145,13 @@ void runBenchStep(const BenchStepFlags& f) {
   r["wide_sweep"] = !f.narrow;
   r["dt_s"] = f.dt_s;
   r["steps"] = f.steps;
-  r["contact_points"] = contact_points;
-  r["us_per_step"] = median_us;
-  r["wall_us_per_step"] = median_wall_us;
-  r["ns_per_constraint_iteration"] = ns_per;
+  r["contact_points"] = cost.contact_points;
+  r["us_per_step"] = cost.us_per_step;
+  r["wall_us_per_step"] = cost.wall_us_per_step;
+  r["ns_per_constraint_iteration"] = cost.ns_per_constraint_iteration;
   r["max_deviation_m"] = cost.max_deviation_m;
   r["points_at_cap"] = cost.points_at_cap;
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(cost.state_hash));
-  r["state_hash"] = hash;
+  r["state_hash"] = scenes::hashHex(cost.state_hash);
   if (f.peer == "bullet") {
     const baselines::PeerStepCost peer = baselines::bulletPeerStepCost(
         *settings, f.mass_kg, f.substeps, f.iterations, f.warmup, f.steps, f.dt_s);
@@ -125,18 +161,12 @@ void runBenchStep(const BenchStepFlags& f) {
                  {"us_per_step", peer.us_per_step},
                  {"ns_per_constraint_iteration", peer.ns_per_constraint_iteration},
                  {"finite", peer.finite},
-                 {"ratio", ns_per / peer.ns_per_constraint_iteration}};
+                 {"ratio", cost.ns_per_constraint_iteration / peer.ns_per_constraint_iteration}};
   }
   ThreadSpeedup speedup;
   if (f.against_one_thread) {
     speedup = measureThreadSpeedup(settings, options, kSpeedupBlockSteps);
     const double per_ns = 1e3 / (static_cast<double>(constraints) * f.substeps * f.iterations);
-    char one_hash[17];
-    std::snprintf(one_hash, sizeof one_hash, "%016llx",
-                  static_cast<unsigned long long>(speedup.one_thread_hash));
-    char many_hash[17];
-    std::snprintf(many_hash, sizeof many_hash, "%016llx",
-                  static_cast<unsigned long long>(speedup.mixed_hash));
     r["against_one_thread"] = {
         {"one_thread_ns_per_constraint_iteration", speedup.one_thread_wall_us * per_ns},
         {"ns_per_constraint_iteration", speedup.many_threads_wall_us * per_ns},
@@ -145,56 +175,19 @@ void runBenchStep(const BenchStepFlags& f) {
         {"speedup_upper_quartile", speedup.speedup_high},
         {"block_steps", kSpeedupBlockSteps},
         {"block_pairs", speedup.pairs},
-        {"one_thread_state_hash", one_hash},
-        {"mixed_state_hash", many_hash},
+        {"one_thread_state_hash", scenes::hashHex(speedup.one_thread_hash)},
+        {"mixed_state_hash", scenes::hashHex(speedup.mixed_hash)},
         {"same_state_hash", speedup.one_thread_hash == speedup.mixed_hash}};
   }
   const bool hashes_differ = f.against_one_thread && speedup.one_thread_hash != speedup.mixed_hash;
-  if (f.json) {
+  if (f.json)
     std::printf("%s\n", r.dump(2).c_str());
-    if (hashes_differ)
-      throw CommandFailure("bench step: the state differs between 1 and " + std::to_string(f.threads) +
-                           " threads");
-    return;
-  }
-  std::printf("deformation step: %zu control points, %zu constraints (%zu edges, %zu spokes, %zu bends)\n",
-              settings->pointCount(), constraints, settings->edges.size(), settings->spokes.size(),
-              settings->bends.size());
-  std::printf("  %u substeps x %u iterations, dt %.6g s, wall 5 cm into the front (%u points in contact)\n",
-              f.substeps, f.iterations, f.dt_s, contact_points);
-  std::printf(
-      "  median %.2f us per step (thread CPU time; wall %.2f us), %.2f ns per constraint per iteration "
-      "(%s, %u thread%s, %zu steps); state hash %s\n",
-      median_us, median_wall_us, ns_per, f.threads > 1 ? "wall time" : "CPU time", f.threads,
-      f.threads > 1 ? "s" : "", f.steps, hash);
-  std::printf("  at the end: largest deviation from rest %.3f m, %u of %zu points within 1 mm of their cap\n",
-              cost.max_deviation_m, cost.points_at_cap, settings->pointCount());
-  if (r.contains("peer")) {
-    const auto& peer = r["peer"];
-    std::printf(
-        "  peer bullet: btSoftBody, %zu nodes, %zu links, no contact: %.2f us per step, %.2f ns per "
-        "constraint per iteration%s\n  ratio (ours / bullet) %.2f\n",
-        peer["nodes"].get<std::size_t>(), peer["links"].get<std::size_t>(), peer["us_per_step"].get<double>(),
-        peer["ns_per_constraint_iteration"].get<double>(), peer["finite"].get<bool>() ? "" : " (DIVERGED)",
-        peer["ratio"].get<double>());
-  }
-  if (f.against_one_thread) {
-    const auto& a = r["against_one_thread"];
-    std::printf(
-        "  against one thread, in turn in blocks of %zu steps (%zu pairs, wall time): 1 thread %.2f ns, %u "
-        "threads "
-        "%.2f ns per constraint per iteration\n  speed-up %.2fx (quartiles %.2f-%.2f); state hash %s after "
-        "the mixed steps, %s on one thread throughout (%s)\n",
-        kSpeedupBlockSteps, speedup.pairs, a["one_thread_ns_per_constraint_iteration"].get<double>(),
-        f.threads, a["ns_per_constraint_iteration"].get<double>(), speedup.speedup, speedup.speedup_low,
-        speedup.speedup_high, a["mixed_state_hash"].get<std::string>().c_str(),
-        a["one_thread_state_hash"].get<std::string>().c_str(), hashes_differ ? "DIFFERENT" : "the same");
-    if (hashes_differ)
-      throw CommandFailure("bench step: the state differs between 1 and " + std::to_string(f.threads) +
-                           " threads");
-  }
+  else
+    printBenchStep(f, r);
+  if (hashes_differ)
+    throw CommandFailure("bench step: the state differs between 1 and " + std::to_string(f.threads) +
+                         " threads");
 }
-
 }  // namespace
 
 void registerBenchStepCommand(CLI::App& bench) {
@@ -222,9 +215,10 @@ void registerBenchStepCommand(CLI::App& bench) {
   step->add_option("--peer", flags->peer, "Also run the same body in a peer engine: bullet (btSoftBody)");
   step->add_flag(
       "--against-one-thread", flags->against_one_thread,
-      "With --threads 2: also step the body on one thread and on --threads in turn, in blocks of 20 "
-      "steps in this process, and print the speed-up (median of the blocks' ratios) and both "
-      "state hashes");
+      "With --threads 2: also step the body on one thread and on --threads in turn, in blocks of " +
+          std::to_string(kSpeedupBlockSteps) +
+          " steps in this process, and print the speed-up (median of the blocks' ratios) and both state "
+          "hashes");
   step->add_flag("--narrow", flags->narrow,
                  "One constraint and point at a time (deform SolverParams::wide_sweep off; the same bits)");
   step->add_flag("--json", flags->json, "Print one JSON object");

@@ -335,8 +335,8 @@ TEST_CASE("a point set's support four at a time is the one-by-one scan's point, 
 
 TEST_CASE("the points near a shape, listed four at a time, are those the one-by-one test keeps",
           "[dynamics]") {
-  // A plane, a ball (sphere, capsule), and a support shape (every point listed); ranges that start and end
-  // off a multiple of four.
+  // The two kinds the wide test takes: a plane, and a ball (sphere, capsule); ranges that start and end off
+  // a multiple of four. (A shape it is unsure of lists every point, one at a time either way.)
   const std::vector<ContactShape> shapes = {
       HalfSpaceShape{{0.3, -1.2, 2.0}, 0.4},
       SphereShape{{0.1, 0.2, -0.3}, 0.6},
