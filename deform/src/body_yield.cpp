@@ -34,19 +34,27 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
         if (c.moved_m[j].squaredNorm() > 0) held_.push_back({c.corners[j], c.shape, c.normal});
   }
   // Jacobi over the held points, so that no point's index order decides where the stop acts: each pass
-  // moves the core by the largest step any held point needs, and that impulse acts at the held points'
-  // rest places weighted by the step each needed (a wall met squarely stops the car at the middle of its
-  // front, not at whichever point comes first).
+  // stops the core at the held points' mean rest place and normal, weighted by how far each is past its
+  // cap (a wall met squarely stops the car at the middle of its front, not at whichever point comes
+  // first). The stop is an inelastic impulse at that place: it brings the approach of the core's point
+  // there (the core's motion, and the turn the stops of this step gave it) to rest along the normal, with
+  // the mass the core has at that point, translation and turn together (Mirtich 1996, "Impulse-based
+  // dynamic simulation of rigid body systems", the collision impulse with e = 0). So it never does
+  // positive work: the kinetic energy falls by half that mass times the approach speed squared. Stopping
+  // the core's translation alone and then handing ODE the moment of that impulse turned a car about a
+  // post so hard that its front came off it faster than it went in. The positions past the cap it leaves
+  // are the projection's below.
   constexpr int kMostStopPasses = 4;
+  const Eigen::Matrix3d& inverse_inertia = inputs.core_inverse_inertia_per_kg_m2;
   for (int pass = 0; pass < kMostStopPasses && !held_.empty(); ++pass) {
     double largest_m = 0, total_m = 0;
     const HeldPoint* largest = nullptr;
-    Eigen::Vector3d lever_sum{0, 0, 0};
+    Eigen::Vector3d rest_sum{0, 0, 0}, normal_sum{0, 0, 0};
     for (const HeldPoint& held : held_) {
       const uint32_t i = held.point;
-      // The obstacle pushes only along its normal: the core moves back along it by the least s >= 0 that
-      // brings the point within its cap, |d - s n| <= cap; a point beyond its cap across the normal is the
-      // point's own to fix (its projection below).
+      // The obstacle pushes only along its normal: s >= 0 is how far the core is past where the point
+      // would be within its cap, |d - s n| <= cap; a point beyond its cap across the normal is the point's
+      // own to fix (its projection below).
       const Eigen::Vector3d d = x[i] - (settings.rest_positions_m[i] + core - settings.core_m);
       const double cap = settings.max_deviation_m[i];
       if (d.squaredNorm() <= cap * cap) continue;
@@ -56,7 +64,8 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
       const double s = along - std::sqrt(cap * cap - across2);
       if (!(s > 0)) continue;
       total_m += s;
-      lever_sum += s * (settings.rest_positions_m[i] - settings.core_m);
+      rest_sum += s * settings.rest_positions_m[i];
+      normal_sum += s * held.normal;
       if (s > largest_m) {
         largest_m = s;
         largest = &held;
@@ -64,28 +73,33 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     }
     if (largest == nullptr) break;
     const uint32_t shape = largest->shape;
-    // A movable obstacle gives way by its share (inverse masses), as far as what holds it lets it; the
-    // core moves by the rest.
+    const Eigen::Vector3d rest_m = rest_sum / total_m;
+    const Eigen::Vector3d normal =
+        normal_sum.norm() > 1e-9 * total_m ? Eigen::Vector3d(normal_sum.normalized()) : largest->normal;
+    // The core's point at rest_m, relative to the obstacle there.
+    const Eigen::Vector3d at_m = rest_m + core - settings.core_m;
+    const Eigen::Vector3d lever_m = rest_m - inputs.core_centre_of_mass_m;
+    const Eigen::Vector3d obstacle = obstacleVelocity(inputs, shape, at_m);
+    const Eigen::Vector3d before_mps = (core - core_start) / h + stop_omega_radps_.cross(lever_m) - obstacle;
+    const double approach_mps = -before_mps.dot(normal);
+    if (!(approach_mps > 0)) break;  // already coming off it
+    // A movable obstacle gives way by its share (inverse masses), as far as what holds it lets it.
     const double w_obstacle = obstacle_inverse_mass_[shape];
-    Eigen::Vector3d move = largest_m * largest->normal;
-    if (w_obstacle > 0) {
-      const Eigen::Vector3d given = heldMove(
-          shape, -(largest_m * w_obstacle / (core_inverse_mass_per_kg_ + w_obstacle)) * largest->normal);
-      obstacle_shift_m_[shape] += given;
-      move += given;
-    }
-    const Eigen::Vector3d obstacle = obstacleVelocity(inputs, shape, core_start);
-    const Eigen::Vector3d before_mps = (core - core_start) / h - obstacle;
-    const Eigen::Vector3d impulse_Ns = move / (core_inverse_mass_per_kg_ * h);
-    // Its loss: the impulse against the core's mean velocity relative to the obstacle (as contactLoss).
-    report.contact_loss_J -= impulse_Ns.dot(before_mps + 0.5 * move / h);
+    const Eigen::Vector3d arm = lever_m.cross(normal);
+    const double inverse_mass = core_inverse_mass_per_kg_ + w_obstacle + arm.dot(inverse_inertia * arm);
+    const double j_Ns = approach_mps / inverse_mass;
+    const Eigen::Vector3d impulse_Ns = j_Ns * normal;
+    if (w_obstacle > 0) obstacle_shift_m_[shape] += heldMove(shape, -(w_obstacle * h) * impulse_Ns);
+    stop_omega_radps_ += inverse_inertia * lever_m.cross(impulse_Ns);
+    // Its loss: the kinetic energy the inelastic impulse takes, 1/2 j v_n.
+    report.contact_loss_J += 0.5 * j_Ns * approach_mps;
     report.contact_impulse_per_obstacle_Ns[shape] += impulse_Ns;
     report.contact_impulse_Ns += impulse_Ns;
     report.core_impulse_Ns += impulse_Ns;
-    report.core_angular_impulse_Nms += (lever_sum / total_m).cross(impulse_Ns);
-    report.contact_moment_Nms += (core_start - settings.core_m + lever_sum / total_m).cross(impulse_Ns);
+    report.core_angular_impulse_Nms += (rest_m - settings.core_m).cross(impulse_Ns);
+    report.contact_moment_Nms += (core_start - settings.core_m + rest_m).cross(impulse_Ns);
     report.obstacle_work_J += impulse_Ns.dot(obstacle);
-    core += move;
+    core += (core_inverse_mass_per_kg_ * h) * impulse_Ns;
   }
   // The rest are pulled back to the cap. The cap ties a point to the core, so each projection moves both
   // by their inverse masses (PBD, Mueller et al. 2007, eq. 8), point by point: moving only the point and

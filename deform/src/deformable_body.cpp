@@ -190,6 +190,8 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   }
   if (std::isnan(inputs.core_mass_kg) || !(inputs.core_mass_kg > 0))
     throw InputError("core_mass_kg: must be > 0 (infinite: a kinematic core)");
+  if (!inputs.core_inverse_inertia_per_kg_m2.allFinite() || !inputs.core_centre_of_mass_m.allFinite())
+    throw InputError("core_inverse_inertia_per_kg_m2, core_centre_of_mass_m: must be finite");
   if (!std::isfinite(inputs.contact_friction) || inputs.contact_friction < 0)
     throw InputError("contact_friction: must be finite and >= 0 (got " +
                      std::to_string(inputs.contact_friction) + ")");
@@ -204,6 +206,7 @@ bool DeformableBody::beginStep(const StepInputs& inputs, double dt_s, bool touch
   dt_s_ = dt_s;
 
   report_ = StepReport{};
+  stop_omega_radps_.setZero();
   report_.contact_impulse_per_obstacle_Ns.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
   report_.obstacle_displacement_m.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());
   report_.obstacle_velocity_change_mps.assign(inputs.contacts.size(), Eigen::Vector3d::Zero());

@@ -209,7 +209,12 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
   inputs.frame_to_world = frame.orientation.toRotationMatrix();
   // Crush: the core is the chassis, a heavy particle inside deform's substeps; what the body hands it is
   // handed to ODE below, in this step. Visual: the chassis is rigid to what it hits (ODE's contact).
-  if (crush) inputs.core_mass_kg = car.chassisMass_kg();
+  if (crush) {
+    inputs.core_mass_kg = car.chassisMass_kg();
+    // The rigid stop at the caps turns chassis and shell together (finishCar's share of the moment).
+    inputs.core_inverse_inertia_per_kg_m2 = car.inertia_kg_m2().inverse();
+    inputs.core_centre_of_mass_m = car.centreOfMass_m();
+  }
 
   // The chassis's motion over ODE's step (its forces only: the body's reaction of the last step moved the
   // points with it) is deform's frame: the points feel the inertial load of ODE's acceleration of the

@@ -273,6 +273,8 @@ class DeformableBody {
     Eigen::Vector3d normal;
   };
   std::vector<HeldPoint> held_;
+  /// The turn the rigid stops at the caps gave the core this step (capDeviation) [rad/s].
+  Eigen::Vector3d stop_omega_radps_ = Eigen::Vector3d::Zero();
   std::vector<uint32_t> near_cap_of_half_[2];  ///< capDeviation's scratch: each half's, in point order
   std::vector<ContactShape> placed_;           ///< the obstacles where they are in the current substep
   /// Per obstacle, this step: its inverse mass [1/kg] (0: immovable), and for a movable one its

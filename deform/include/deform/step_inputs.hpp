@@ -80,6 +80,15 @@ struct StepInputs {
   /// how far it moved and the momentum it took (StepReport::core_*), for the caller to hand to its
   /// rigid body. Infinite (the default): the core is kinematic; the momentum it took is still reported.
   double core_mass_kg = std::numeric_limits<double>::infinity();
+  /// The inverse inertia of the rigid assembly that the core stands for (a car: chassis and shell turning
+  /// together) about `core_centre_of_mass_m`, in this body's frame [1/(kg m^2)]. The rigid stop at the
+  /// caps (a held point at its cap stops the core) acts at the held points, off the centre of mass: it
+  /// takes the turn its moment gives into account, so that it stops the point of the core it acts at
+  /// instead of reversing it (with the core taken as not turning, a stop at a door's far corner threw a car
+  /// back at several times its impact energy). Zero: the core does not turn (the moment is still reported).
+  Eigen::Matrix3d core_inverse_inertia_per_kg_m2 = Eigen::Matrix3d::Zero();
+  /// Where that assembly's centre of mass is, in this body's frame at rest [m].
+  Eigen::Vector3d core_centre_of_mass_m = Eigen::Vector3d::Zero();
 };
 
 }  // namespace deform
