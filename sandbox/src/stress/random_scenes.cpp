@@ -39,11 +39,12 @@ constexpr std::size_t kBalanced = 1, kAccurate = 2;
 // 0.5 ms (scenes/README.md, longest_contact_substep_s): below 500 Hz, more of them.
 constexpr double kPresetCost[] = {0.5, 1, 2, 3, 6.5};
 // A car that meets another is solved with it as one, and its contacts are searched on both bodies: three
-// balanced cars meeting at 80-200 km/h took 0.76 ms a car and step here.
+// balanced cars meeting at 80-200 km/h took 0.76 ms a car and step here; from 250 points twice that again
+// (three cars meeting at 99 Hz, two of them accurate, took 250 ms a step).
 constexpr double kCarToCarCost = 6;
-// A scene's cost in balanced car-steps at most: about 1 s a run on one core here (0.075 ms each), for a
+// A scene's cost in balanced car-steps at most: about 0.6 s a run on one core here (0.075 ms each), for a
 // crash that stays physical (one that creates energy can take far longer).
-constexpr double kBudgetCarSteps = 12000;
+constexpr double kBudgetCarSteps = 8000;
 
 struct CarDraw {
   Eigen::Vector2d position_m{0, 0};
@@ -201,9 +202,9 @@ double costCarSteps(const std::vector<CarDraw>& cars, double physics_hz, double 
   for (std::size_t i = 0; i < cars.size(); ++i) {
     bool meets_car = cars[i].aim >= 0;
     for (const CarDraw& other : cars) meets_car = meets_car || other.aim == static_cast<int>(i);
-    per_step += kPresetCost[cars[i].preset] *
-                (cars[i].preset >= kAccurate ? std::max(1.0, 500 / rate_hz) : 1) *
-                (meets_car ? kCarToCarCost : 1);
+    const bool fine = cars[i].preset >= kAccurate;
+    per_step += kPresetCost[cars[i].preset] * (fine ? std::max(1.0, 500 / rate_hz) : 1) *
+                (meets_car ? kCarToCarCost * (fine ? 2 : 1) : 1);
   }
   return per_step * rate_hz * duration_s;
 }
