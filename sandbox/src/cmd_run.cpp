@@ -258,8 +258,11 @@ RunResult runScene(const RunOptions& options) {
   result.out_dir = out.string();
   scenes::writeFileAtomically((out / "summary.json").string(), result.summary.dump(2) + "\n");
   if (run.diverged()) {
-    throw std::runtime_error(scene.name + ": the run diverged (a non-finite value or one beyond 1e10): " +
-                             run.divergence() + "; see " + (out / "summary.json").string());
+    throw std::runtime_error(
+        scene.name +
+        ": the run diverged (a non-finite value, one beyond 1e10, energy created or a car "
+        "past its ballistic bound): " +
+        run.divergence() + "; see " + (out / "summary.json").string());
   }
   return result;
 }

@@ -318,6 +318,12 @@ nlohmann::json SceneRun::summary() const {
   }
   out["diverged"] = any_diverged;
   out["cars"] = cars;
+  const vehicle::Simulation::EnergyWatchReport watch = simulation_->energyWatch();
+  out["energy_watch"] = {{"largest_created_J", watch.largest_created_J},
+                         {"largest_created_share", watch.largest_created_share},
+                         {"through_J", watch.through_J},
+                         {"drive_work_J", watch.drive_work_J},
+                         {"tolerance_share", vehicle::kEnergyWatchTolerance}};
   // Per car: body steps that ran the solver and those skipped asleep. Like timing_ms, not state: a
   // resumed run counts only its own steps.
   nlohmann::json deform_steps = nlohmann::json::array();

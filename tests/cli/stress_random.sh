@@ -13,7 +13,7 @@ rm -rf "$work" && mkdir -p "$work" || exit 1
 "$sandbox" stress --random 2 --seed 1 --out "$work" > "$work/stdout.txt" 2> "$work/stderr.txt"
 code=$?
 out=$(cat "$work/stdout.txt")
-grep -Eq '^#  +cars +km/h +aimed at +Hz +preset +coupling +created% +rise m +verdict +failed' <<<"$out" ||
+grep -Eq '^#  +cars +km/h +aimed at +Hz +preset +coupling +created% +car bal% +rise m +verdict +failed' <<<"$out" ||
   fail "no table header in: $out"
 rows=$(grep -Ec '^[01] +[123] +[0-9/]+ ' <<<"$out")
 [[ $rows -eq 2 ]] || fail "expected 2 rows, got $rows in: $out"

@@ -324,6 +324,7 @@ void Car::applyForces(double dt_s, const ode::GeomGrid& geoms) {
       s.normal_load_N = 0;
     }
     const TyreStepResult tyre = stepTyre(s.tyre, in, settings_.tyre);
+    s.drive_torque_Nm = in.drive_torque_Nm;
     s.sliding = tyre.force.sliding;
     s.locked = tyre.locked;
     s.slip_ratio = tyre.slip_ratio;

@@ -109,8 +109,10 @@ void Simulation::Impl::solveGroup(const std::vector<std::size_t>& group) {
     ++dc.deform_steps;
     dc.partner_pushed.assign(dc.partners.size(), 0);
   }
-  // Which partners' bodies pushed each other this step (the metrics' impact window).
+  // Which partners' bodies pushed each other this step (the metrics' impact window). Each body's report
+  // books a link's loss as its own (against the other as its obstacle): the energy watch counts it once.
   for (std::size_t l = 0; l < links.size(); ++l) {
+    cars[group[links[l].a]]->link_loss_counted_twice_J += link_reports[l].loss_J;
     if (link_reports[l].impulse_on_a_Ns.squaredNorm() == 0) continue;
     DeformableCar& ca = *cars[group[links[l].a]];
     DeformableCar& cb = *cars[group[links[l].b]];

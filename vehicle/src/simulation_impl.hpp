@@ -113,6 +113,9 @@ struct DeformableCar {
   /// prepareCar every step, so not part of the saved state.
   Eigen::Vector3d frame_velocity_mps{0, 0, 0}, frame_omega_radps{0, 0, 0};
   double contact_loss_J = 0;  ///< deform's, since the start [J]
+  /// The losses of its links to partners (deform::LinkReport, this car the first of the link), which the
+  /// partner's contact_loss_J books too, since the start [J].
+  double link_loss_counted_twice_J = 0;
   double contact_loss_at_impact_J = 0, contact_loss_before_step_J = 0;
   double elastic_at_impact_J = 0, elastic_before_step_J = 0;  ///< the body's elastic energy [J]
   double step_crush_work_J = 0;  ///< kinetic energy the body's reaction took from the chassis this step [J]
@@ -120,6 +123,35 @@ struct DeformableCar {
   /// The body's carried elastic energy after its last step that solved (deform::DeformableBody::
   /// carriedElasticEnergy_J), kept here so a restored run reports what the uninterrupted one does [J].
   double elastic_after_step_J = 0;
+};
+
+/// The energy watch (energy_watch.cpp; DESIGN.md section 7): every step, the mechanical energy of every
+/// car (chassis, shell points, wheels' spin, weight) and free obstacle, plus what the bodies booked as
+/// lost (plastic work, viscous and contact losses), may exceed what the run started with and the engines
+/// put in by no more than a tolerance; and a car that touches nothing rises no higher than its speed
+/// when it left allows. A run that breaks either is marked diverged on the car whose energy rose most.
+struct EnergyWatch {
+  /// Energy created beyond this share of the energy that went through the run (its kinetic energy at
+  /// the start, the engines' work, and the potential energy given up) is a broken run.
+  static constexpr double kTolerance = kEnergyWatchTolerance;
+  /// ... plus the energy of lifting every mass by this much, so a car settling on its springs (whose
+  /// energy is not counted) is not flagged [m].
+  static constexpr double kFloorLift_m = 0.05;
+  /// A flight may rise this much above its ballistic apex (ODE's integration stays below it) [m].
+  static constexpr double kApexSlack_m = 0.02;
+  bool started = false;
+  double initial_J = 0;              ///< the mechanical energy of everything at the start [J]
+  double initial_kinetic_J = 0;      ///< its kinetic part [J]
+  double initial_potential_J = 0;    ///< its potential part [J]
+  double lowest_potential_J = 0;     ///< the least potential energy of everything so far [J]
+  double drive_work_J = 0;           ///< the engines' work on the wheels since the start [J]
+  double total_mass_kg = 0;          ///< every car and free obstacle [kg]
+  double through_J = 0;              ///< the energy through the run so far (kTolerance) [J]
+  double largest_created_J = 0;      ///< the most created energy seen, beyond none (reported) [J]
+  double largest_created_share = 0;  ///< that, over the energy through the run [1]
+  std::vector<double> car_energy_J;  ///< per CarId: its energy and booked losses after the last step [J]
+  std::vector<uint8_t> airborne;     ///< per CarId: touching nothing since `apex_m` was set
+  std::vector<double> apex_m;        ///< per CarId: the highest its centre of mass may rise now [m]
 };
 
 struct Simulation::Impl {
@@ -151,6 +183,17 @@ struct Simulation::Impl {
   std::vector<uint8_t> idleCars() const;
   /// Keeps an idle car's body asleep (DeformationSettings::skip_when_idle), or lets it wake as usual.
   void holdAsleep(DeformableCar& dc, bool idle) const;
+
+  EnergyWatch watch;
+  /// Every car's and free obstacle's mechanical energy and booked losses; per car into `per_car_J`
+  /// (indexed by CarId), with `kinetic_J` and `potential_J` their sums (energy_watch.cpp).
+  double watchedEnergy_J(std::vector<double>& per_car_J, double& kinetic_J, double& potential_J) const;
+  /// The whole car's centre of mass and its velocity (world): in Crush, the chassis and the shell's points.
+  void wholeCarCentre(CarId c, Eigen::Vector3d& position_m, Eigen::Vector3d& velocity_mps) const;
+  /// Starts the watch at the end of the first step (Simulation::step: a scene may push a car in it).
+  void startWatch();
+  /// The checks after a step; marks the run diverged on the first that fails.
+  void checkWatch();
 
   explicit Impl(const WorldSettings& s) : world(s) {}
 

@@ -93,6 +93,8 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
         dc.elastic_before_step_J, dc.step_crush_work_J, dc.step_other_work_J, dc.elastic_after_step_J,
         dc.inertial_work_J, dc.inertial_work_at_impact_J, dc.obstacle_work_J, dc.obstacle_work_at_impact_J})
     out.real(x);
+  // The energy watch's (it moves nothing: the state hash leaves it out).
+  if (!out.forHash()) out.real(dc.link_loss_counted_twice_J);
 }
 
 void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
@@ -132,6 +134,7 @@ void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
         &dc.inertial_work_J, &dc.inertial_work_at_impact_J, &dc.obstacle_work_J,
         &dc.obstacle_work_at_impact_J})
     *x = in.real();
+  dc.link_loss_counted_twice_J = in.real();
   // What the last step left for its metrics (contacts, shapes) is not kept: the next step makes its own.
   dc.touching.clear();
   dc.partners.clear();
@@ -146,12 +149,42 @@ void Simulation::saveState(StateWriter& out) const {
   impl_->world.saveState(out);
   out.u64(impl_->cars.size());
   for (const auto& dc : impl_->cars) impl_->saveCar(out, *dc);
+  // The watch's accumulators resume with the run; they move nothing, so the state hash leaves them out.
+  if (out.forHash()) return;
+  const EnergyWatch& w = impl_->watch;
+  out.flag(w.started);
+  for (double x :
+       {w.initial_J, w.initial_kinetic_J, w.initial_potential_J, w.lowest_potential_J, w.drive_work_J,
+        w.total_mass_kg, w.largest_created_J, w.largest_created_share, w.through_J})
+    out.real(x);
+  out.u64(w.car_energy_J.size());
+  for (std::size_t c = 0; c < w.car_energy_J.size(); ++c) {
+    out.real(w.car_energy_J[c]);
+    out.flag(c < w.airborne.size() && w.airborne[c] != 0);
+    out.real(c < w.apex_m.size() ? w.apex_m[c] : 0.0);
+  }
 }
 
 void Simulation::restoreState(StateReader& in) {
   impl_->world.restoreState(in);
   in.expect(in.u64() == impl_->cars.size(), "deformable car count does not match the scene");
   for (auto& dc : impl_->cars) impl_->restoreCar(in, *dc);
+  EnergyWatch& w = impl_->watch;
+  w.started = in.flag();
+  for (double* x :
+       {&w.initial_J, &w.initial_kinetic_J, &w.initial_potential_J, &w.lowest_potential_J, &w.drive_work_J,
+        &w.total_mass_kg, &w.largest_created_J, &w.largest_created_share, &w.through_J})
+    *x = in.real();
+  const uint64_t count = in.u64();
+  in.expect(count == (w.started ? impl_->world.carCount() : 0), "energy watch: car count does not match");
+  w.car_energy_J.assign(count, 0.0);
+  w.airborne.assign(count, 0);
+  w.apex_m.assign(count, 0.0);
+  for (std::size_t c = 0; c < count; ++c) {
+    w.car_energy_J[c] = in.real();
+    w.airborne[c] = in.flag() ? 1 : 0;
+    w.apex_m[c] = in.real();
+  }
 }
 
 }  // namespace vehicle

@@ -235,6 +235,12 @@ void Simulation::step() {
     m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
     lap(timings.metrics_ms);
   }
+  // From the end of the first step: a scene may start a car's sideways speed by a push in it.
+  if (m.watch.started)
+    m.checkWatch();
+  else
+    m.startWatch();
+  lap(timings.metrics_ms);
   m.timings = timings;
 }
 

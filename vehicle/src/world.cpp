@@ -646,6 +646,23 @@ double World::inverseMass_per_kg(EntityRef entity) const {
   return mass.mass > 0 ? 1.0 / mass.mass : 0.0;
 }
 
+double World::obstacleKineticEnergy_J(ObstacleId id) const {
+  const ObstacleEntry& o = impl_->obstacles.at(id);
+  if (o.body == nullptr) return 0.0;
+  dMass mass;
+  dBodyGetMass(o.body, &mass);
+  const Eigen::Vector3d v = ode::vec(dBodyGetLinearVel(o.body));
+  // ODE's inertia is in the body's axes: the turn taken into them.
+  const Eigen::Vector3d w_world = ode::vec(dBodyGetAngularVel(o.body));
+  dVector3 w_body;
+  dBodyVectorFromWorld(o.body, w_world.x(), w_world.y(), w_world.z(), w_body);
+  const Eigen::Vector3d w(w_body[0], w_body[1], w_body[2]);
+  Eigen::Matrix3d inertia;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) inertia(r, c) = mass.I[4 * r + c];
+  return 0.5 * mass.mass * v.squaredNorm() + 0.5 * w.dot(inertia * w);
+}
+
 void World::step() {
   Impl& m = *impl_;
   const double dt = fixedDt_s();

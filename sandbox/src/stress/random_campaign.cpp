@@ -53,6 +53,7 @@ RandomOutcome runRandomScene(uint64_t seed, std::size_t index) {
     outcome.passed = verdict.ok;
     outcome.failures = verdict.failures;
     outcome.created_percent = first.figures.created_percent;
+    outcome.car_balance_percent = first.figures.car_balance_percent;
     outcome.max_rise_m = first.figures.max_rise_m;
     outcome.impacted = first.figures.impacted;
   } catch (const deform::InputError& e) {
@@ -76,17 +77,19 @@ std::vector<RandomOutcome> runRandomCampaign(uint64_t seed, std::size_t count,
 
 std::string randomTableHeader() {
   char text[256];
-  std::snprintf(text, sizeof text, "%-5s %-4s %-13s %-32s %6s %-24s %-20s %9s %7s %6s  %s", "#", "cars",
-                "km/h", "aimed at", "Hz", "preset", "coupling", "created%", "rise m", "verdict", "failed");
+  std::snprintf(text, sizeof text, "%-5s %-4s %-13s %-32s %6s %-24s %-20s %9s %9s %7s %6s  %s", "#", "cars",
+                "km/h", "aimed at", "Hz", "preset", "coupling", "created%", "car bal%", "rise m", "verdict",
+                "failed");
   return text;
 }
 
 std::string randomTableRow(const RandomOutcome& o) {
   const RandomSceneOutline& s = o.scene.outline;
   char text[256];
-  std::snprintf(text, sizeof text, "%-5zu %-4zu %-13s %-32s %6.0f %-24s %-20s %9.1f %7.2f %6s  ", o.index,
-                s.cars, s.speeds_kmh.c_str(), s.targets.c_str(), s.physics_hz, s.presets.c_str(),
-                s.couplings.c_str(), o.created_percent, o.max_rise_m, o.passed ? "ok" : "FAIL");
+  std::snprintf(text, sizeof text, "%-5zu %-4zu %-13s %-32s %6.0f %-24s %-20s %9.1f %9.1f %7.2f %6s  ",
+                o.index, s.cars, s.speeds_kmh.c_str(), s.targets.c_str(), s.physics_hz, s.presets.c_str(),
+                s.couplings.c_str(), o.created_percent, o.car_balance_percent, o.max_rise_m,
+                o.passed ? "ok" : "FAIL");
   return text + (o.passed ? std::string(o.impacted == 0 ? "(no impact)" : "") : o.failures);
 }
 
@@ -106,13 +109,15 @@ void writeFailingScene(const RandomOutcome& outcome, const std::string& out_dir)
 
 void writeRandomCsv(const std::vector<RandomOutcome>& outcomes, const std::string& out_dir) {
   CsvTable table({"index", "scene", "cars", "speeds_kmh", "aimed_at", "physics_hz", "presets", "couplings",
-                  "impacted_cars", "created_percent", "max_rise_m", "passed", "failed", "seconds"});
+                  "impacted_cars", "created_percent", "car_balance_percent", "max_rise_m", "passed", "failed",
+                  "seconds"});
   for (const RandomOutcome& o : outcomes) {
     const RandomSceneOutline& s = o.scene.outline;
     table.addRow({std::to_string(o.index), o.scene.name, std::to_string(s.cars), s.speeds_kmh, s.targets,
                   CsvTable::number(s.physics_hz), s.presets, s.couplings, std::to_string(o.impacted),
-                  CsvTable::number(o.created_percent), CsvTable::number(o.max_rise_m),
-                  o.passed ? "yes" : "no", o.failures, CsvTable::fixed(o.seconds, 2)});
+                  CsvTable::number(o.created_percent), CsvTable::number(o.car_balance_percent),
+                  CsvTable::number(o.max_rise_m), o.passed ? "yes" : "no", o.failures,
+                  CsvTable::fixed(o.seconds, 2)});
   }
   scenes::writeFileAtomically((fs::path(out_dir) / "stress_random.csv").string(), table.text());
 }

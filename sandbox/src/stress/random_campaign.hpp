@@ -17,11 +17,12 @@ struct RandomOutcome {
   std::size_t index = 0;
   RandomScene scene;
   bool passed = false;
-  std::string failures;        ///< the invariants that failed, "; "-separated; empty when it passed
-  double created_percent = 0;  ///< the most energy any impacted car created, % of its impact energy
-  double max_rise_m = 0;       ///< the highest any car's centre of mass rose above its start [m]
-  std::size_t impacted = 0;    ///< cars that hit something
-  double seconds = 0;          ///< wall time of both runs [s]
+  std::string failures;            ///< the invariants that failed, "; "-separated; empty when it passed
+  double created_percent = 0;      ///< the most energy the run created, % of the energy through it
+  double car_balance_percent = 0;  ///< the largest share a car's own balance left on the side of creation [%]
+  double max_rise_m = 0;           ///< the highest any car's centre of mass rose above its start [m]
+  std::size_t impacted = 0;        ///< cars that hit something
+  double seconds = 0;              ///< wall time of both runs [s]
 };
 
 /// Plays scene `index` of `seed` twice and checks it. A scene that the reader refuses is a failure (a bug

@@ -42,6 +42,7 @@ struct WheelState {
   Eigen::Vector3d contact_point_m{0, 0, 0};  ///< where the tyre touches (world) [m]
   Eigen::Vector3d contact_normal{0, 0, 1};   ///< surface normal there (world)
   Eigen::Vector3d force_N{0, 0, 0};          ///< total force of this wheel on the chassis (world) [N]
+  double drive_torque_Nm = 0;                ///< the engine's torque on this wheel in the last step [N m]
 };
 
 class Car {

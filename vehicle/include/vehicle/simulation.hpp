@@ -198,8 +198,11 @@ struct CrashMetrics {
   double max_penetration_m =
       0;                   ///< largest depth of a control point left inside an obstacle after a step [m]
   bool tunnelled = false;  ///< the centre of mass crossed to the far side of the wall or post it hit first
-  bool diverged = false;   ///< a non-finite value or one beyond 1e10 in the car or its body
-  /// When it first diverged [s] and what: "control point N" or "chassis" (empty while it has not).
+  /// A non-finite value or one beyond 1e10 in the car or its body, energy created past the energy
+  /// watch's tolerance, or the car rising past its ballistic bound (Simulation::energyWatch).
+  bool diverged = false;
+  /// When it first diverged [s] and what: "control point N", "chassis", "energy created: ..." or
+  /// "rose ... past its ballistic bound ..." (empty while it has not).
   double diverged_at_s = 0;
   std::string diverged_what;
   bool impacted = false;  ///< the car has hit something (not the ground)
@@ -216,6 +219,10 @@ struct StepTimings {
   double metrics_ms = 0;   ///< crash metrics and the energy account [ms]
   double physics_ms() const { return tyres_ms + collide_ms + solve_ms; }  ///< ODE's whole step [ms]
 };
+
+/// The share of the energy through a run that it may create before the energy watch marks it diverged
+/// (Simulation::energyWatch; DESIGN.md section 7) [1].
+inline constexpr double kEnergyWatchTolerance = 0.05;
 
 class Simulation {
  public:
@@ -271,6 +278,19 @@ class Simulation {
     uint64_t skipped = 0;
   };
   DeformCounts deformCounts(CarId car) const;
+  /// The energy watch's account of the whole run (every car and free obstacle), from the end of its
+  /// first step: the most energy created beyond none (mechanical energy and the bodies' booked losses
+  /// against what the run started with and the engines put in), the energy that went through the run
+  /// (its kinetic energy, the engines' work, the potential energy given up), and the engines' work [J].
+  /// A run whose created energy passed kEnergyWatchTolerance of that is marked diverged
+  /// (CrashMetrics::diverged).
+  struct EnergyWatchReport {
+    double largest_created_J = 0;
+    double largest_created_share = 0;  ///< over the energy through the run when it was largest [1]
+    double through_J = 0;
+    double drive_work_J = 0;
+  };
+  EnergyWatchReport energyWatch() const;
   StepTimings lastTimings() const;
   /// Everything that decides the future, between steps: the world's (World::saveState) and per
   /// deformable car its body's state (deform::saveState), the crush coupling's memory (hull dirty, quiet

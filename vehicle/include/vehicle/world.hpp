@@ -207,6 +207,8 @@ class World {
   void shift(EntityRef entity, const Eigen::Vector3d& shift_m);
   /// 1 / mass of a car's chassis or a free obstacle [1/kg]; 0 for static obstacles and the ground.
   double inverseMass_per_kg(EntityRef entity) const;
+  /// A free obstacle's kinetic energy, translation and turn [J]; 0 for a static one.
+  double obstacleKineticEnergy_J(ObstacleId id) const;
 
   /// One fixed step of 1 / physics_rate_hz: wheel forces of every car, collisions, ODE quick step.
   void step();
