@@ -195,13 +195,13 @@ void Simulation::Impl::checkWatch() {
     if (dc->report.contact_points > 0 || !dc->partners.empty()) touches[dc->id] = 1;
   for (CarId c = 0; c < world.carCount(); ++c) {
     for (const WheelState& w : world.car(c).wheels()) touches[c] = touches[c] || w.in_contact;
-    Eigen::Vector3d centre_m, centre_mps;
-    wholeCarCentre(c, centre_m, centre_mps);
-    const double height_m = up.dot(centre_m);
     if (touches[c]) {
       watch.airborne[c] = 0;
       continue;
     }
+    Eigen::Vector3d centre_m, centre_mps;
+    wholeCarCentre(c, centre_m, centre_mps);
+    const double height_m = up.dot(centre_m);
     if (!watch.airborne[c]) {
       const double rising_mps = std::max(0.0, up.dot(centre_mps));
       watch.apex_m[c] = height_m + rising_mps * rising_mps / (2 * g) + EnergyWatch::kApexSlack_m;
