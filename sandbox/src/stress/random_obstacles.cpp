@@ -1,5 +1,6 @@
 #include "stress/random_obstacles.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <numbers>
 
@@ -47,10 +48,12 @@ ObstacleShape box(RandomDraws& draws) {
 ObstacleShape post(RandomDraws& draws) {
   const double radius_m = draws.logUniform(0.03, 0.5, 0.001);
   const bool capsule = draws.chance(0.25);
+  // A capsule's rounded ends need a height past its diameter (the world refuses one that is not).
+  const double lowest_m = capsule ? std::max(0.3, 2 * radius_m + 0.02) : 0.3;
   ObstacleShape s{capsule ? "capsule post" : "post",
                   {{"type", "post"},
                    {"radius_m", radius_m},
-                   {"height_m", draws.logUniform(0.3, 3, 0.01)},
+                   {"height_m", draws.logUniform(lowest_m, 3, 0.01)},
                    {"shape", capsule ? "capsule" : "cylinder"}}};
   s.half_size_m = {radius_m, radius_m};
   return s;
