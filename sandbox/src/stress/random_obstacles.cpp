@@ -8,9 +8,8 @@ namespace sandbox {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
-// The built-in can's radius and height at mesh_scale 1 (deform/io/builtin_shapes.cpp) [m].
+// The built-in can's radius at mesh_scale 1 (deform/io/builtin_shapes.cpp) [m].
 constexpr double kCanRadius_m = 0.033;
-constexpr double kCanHeight_m = 0.1220;
 
 std::string twoDecimals(double value) {
   char text[32];
