@@ -127,6 +127,11 @@ void Simulation::Impl::startWatch() {
 }
 
 void Simulation::Impl::checkWatch() {
+  // A car added since the watch started brings energy of its own: the watch starts again from here.
+  if (watch.car_energy_J.size() != world.carCount()) {
+    startWatch();
+    return;
+  }
   const double dt = world.fixedDt_s();
   for (CarId c = 0; c < world.carCount(); ++c) watch.drive_work_J += driveWork_J(world.car(c), dt);
   std::vector<double> per_car;
