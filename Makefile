@@ -1,6 +1,6 @@
 # The two user commands. Each installs what is missing, configures, builds and does its job.
 # CI (.ci/run) runs `make test`, `make test-asan` and `make fuzz` (`make ci` here runs the same three;
-# README, "CI jobs").
+# docs/GUIDE.md, "CI jobs").
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz

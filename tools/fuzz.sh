@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer target of a DEFORM_FUZZ build for SECONDS each (make fuzz; README "CI jobs").
+# Runs every libFuzzer target of a DEFORM_FUZZ build for SECONDS each (make fuzz; docs/GUIDE.md "CI jobs").
 #   tools/fuzz.sh BUILD_DIR [SECONDS] [SEED]
 # Corpus of each target, in BUILD_DIR/fuzz/<target>/: the seeds fuzz_seeds writes (small meshes in every
 # format, the shipped scenes with and without --set overrides), the committed findings
