@@ -187,11 +187,12 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
     dc.shapes.add(local, sweep, down, post, true);
     inputs.contact_velocity_mps.push_back(relative_mps);
     inputs.contact_angular_velocity_radps.push_back(relative_radps);
-    // Crush: a free obstacle (a box, a tree, a rigid car) is pushed inside the substeps by its mass, and
-    // takes the body's reaction below. Visual: what the chassis hits moves by ODE's contact alone.
-    const bool deformable_car =
-        other.kind == EntityRef::Kind::Car && other.index < index_of.size() && index_of[other.index] >= 0;
-    const double w_other = crush && !deformable_car ? world.inverseMass_per_kg(other) : 0.0;
+    // Crush: a free obstacle (a box, a tree, a rigid car, a car in the visual coupling) is pushed inside
+    // the substeps by its mass, and takes the body's reaction below. (A crush car's soft hull has no ODE
+    // contact with a visual car's hull: taken as immovable, a visual car drove into the body as a piston
+    // and gave it momentum nobody lost.) Another crush car is a partner, not here. Visual: what the
+    // chassis hits moves by ODE's contact alone.
+    const double w_other = crush ? world.inverseMass_per_kg(other) : 0.0;
     inputs.contact_inverse_mass_per_kg.push_back(w_other);
     inputs.contact_keys.push_back(w_other > 0 ? freeObstacleKey(other) : 0);
     // What holds it (ODE's contacts with the ground and static things this step), out of them.
