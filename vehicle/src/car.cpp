@@ -26,6 +26,12 @@ namespace {
 
 constexpr double kGravity_mps2 = 9.81;
 constexpr double kTwoPi = 2 * std::numbers::pi;
+// The steepest face a wheel stands on: within 60 degrees of its suspension axis (the cosine). A steeper
+// face is no road for the tyre (its hull meets it): the ray looks past it. A wheel's ray that met the
+// side of another car's hull (its normal 87 degrees off) compressed the suspension to 2 cm of its
+// 0.62 m and pushed the two cars into each other with 570 kN (random campaign seed 8, scene 55: 62 kJ
+// created).
+const double kSteepestSupport = std::cos(std::numbers::pi / 3);
 
 /// Wheel loads of a level car at rest: the smallest-norm loads that balance weight, roll and pitch
 /// (sum F_i = W, sum F_i x_i = 0, sum F_i y_i = 0 with x, y from the centre of mass), the usual axle
@@ -296,8 +302,8 @@ void Car::applyForces(double dt_s, const ode::GeomGrid& geoms) {
                          (input_.handbrake && w.handbrake ? settings_.handbrake_torque_Nm : 0.0);
 
     const double reach = w.suspension_length_m + w.radius_m;
-    const ode::RayHit hit =
-        ode::castRay(geoms, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_, ray_candidates_);
+    const ode::RayHit hit = ode::castRay(geoms, ray_, body.toWorld(mount_body_m_[i]), down, reach, body_,
+                                         ray_candidates_, kSteepestSupport);
     Eigen::Vector3d forward = Eigen::Vector3d::Zero(), left = Eigen::Vector3d::Zero();
     s.in_contact = hit.hit;
     if (hit.hit) {

@@ -24,7 +24,8 @@ ConvexData makeConvexData(const std::vector<Eigen::Vector3d>& points,
 }
 
 RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin_m,
-               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch) {
+               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch,
+               double min_facing) {
   dGeomRaySetLength(ray, length_m);
   dGeomRaySet(ray, origin_m.x(), origin_m.y(), origin_m.z(), direction.x(), direction.y(), direction.z());
   const Eigen::Vector3d end = origin_m + length_m * direction;
@@ -39,11 +40,13 @@ RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin
     dContactGeom contact;
     if (dCollide(ray, geom, 1, &contact, sizeof(dContactGeom)) < 1) continue;
     if (best.hit && !(contact.depth < best.distance_m)) continue;
+    Eigen::Vector3d normal = vec(contact.normal);
+    if (normal.dot(direction) > 0) normal = -normal;
+    if (-normal.dot(direction) < min_facing) continue;  // too steep a face: the ray looks on past it
     best.hit = true;
     best.distance_m = contact.depth;
     best.point_m = vec(contact.pos);
-    best.normal = vec(contact.normal);
-    if (best.normal.dot(direction) > 0) best.normal = -best.normal;
+    best.normal = normal;
     best.body = dGeomGetBody(geom);
   }
   return best;

@@ -101,8 +101,12 @@ struct RayHit {
   Eigen::Vector3d normal{0, 0, 1};  ///< facing back along the ray
   dBodyID body = nullptr;           ///< the body hit, or null for a static geom
 };
+/// The nearest hit along the ray of a geom whose face there turns at least `min_facing` (the cosine of
+/// the angle between its normal and the ray, reversed) back towards the ray's origin; steeper faces are
+/// looked past.
 RayHit castRay(const GeomGrid& geoms, dGeomID ray, const Eigen::Vector3d& origin_m,
-               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch);
+               const Eigen::Vector3d& direction, double length_m, dBodyID ignore, std::vector<int>& scratch,
+               double min_facing = -1.0);
 
 /// Which entity a geom belongs to, packed into its user-data pointer: (kind + 1) << 32 | index.
 inline void* packEntity(uint32_t kind, uint32_t index) {
