@@ -42,6 +42,8 @@ TEST_CASE("random crash campaign: the scenes that broke an invariant hold them n
       {7, 43},  // three cars, crush and visual: 188 kJ (132 % by the cars' own books)
       {8, 55},  // two crush cars, a wheel's ray on the side of the other's hull: 62 kJ (21.9 %)
       {7, 14},  // a visual car into a crush car at 170 km/h: 124 kJ (38 %)
+      {8, 54},  // a 628 kg tree at 213 km/h, stopped at the caps as if it stood still: 266 kJ (16.6 %)
+      {8, 71},  // a tree and a wall at 204 km/h: 876 kJ (8.1 %)
   };
   for (const auto& [seed, i] : broken) {
     const sandbox::RandomOutcome outcome = sandbox::runRandomScene(seed, i);
