@@ -68,8 +68,10 @@ build-fuzz: setup-ci
 fuzz: build-fuzz
 	@$(SANITIZER_ENV) bash tools/fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
 
-# What CI runs (.ci/run): the README's test command, then the sanitizer suite, then the fuzz job.
-ci: test test-asan fuzz
+# What CI runs (.ci/run): the README's test command, then the sanitizer suite, then the fuzz job, one
+# after the other; each job's time at the end (tools/ci_times.sh), also when one fails.
+ci:
+	@bash tools/ci_times.sh "$(MAKE)" test test-asan fuzz
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp')
