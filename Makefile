@@ -30,17 +30,17 @@ build: setup-test
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The demo's packages, and only the program and the libraries it links (the rest of build/ is not built);
-# a line per phase while a person waits.
+# a line per phase while a person waits, and the build's own lines without make's "Entering directory" ones.
 DEMO_TARGET = sandbox_cli
 demo:
-	@echo "demo: [1/4] packages (tools/setup.sh demo)"
+	@echo "demo: [1/4] packages: installing what is missing (tools/setup.sh demo)"
 	@bash tools/setup.sh demo
 	@echo "demo: [2/4] configuring $(BUILD_DIR)/"
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DDEFORM_REQUIRE_ALL=OFF >/dev/null
 	@echo "demo: [3/4] building $(BUILD_DIR)/bin/sandbox and the 5 libraries it links:" \
 	  "$$(grep -cE '"file": "$(CURDIR)/(deform/(src|io)|vehicle/src|scenes/src|sandbox/src)/' \
 	  $(BUILD_DIR)/compile_commands.json) files to compile on $(JOBS) cores"
-	@cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGET)
+	@env -u MAKELEVEL cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGET)
 	@echo "demo: [4/4] running the demo: the wall crash, rendered (about a minute)"
 	@bash tools/demo.sh $(BUILD_DIR)
 
