@@ -39,7 +39,7 @@ demo:
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DDEFORM_REQUIRE_ALL=OFF >/dev/null
 	@echo "demo: [3/4] building $(BUILD_DIR)/bin/sandbox and the 5 libraries it links:" \
 	  "$$(grep -cE '"file": "$(CURDIR)/(deform/(src|io)|vehicle/src|scenes/src|sandbox/src)/' \
-	  $(BUILD_DIR)/compile_commands.json) files to compile on $(JOBS) cores"
+	  $(BUILD_DIR)/compile_commands.json) source files, $(JOBS) jobs"
 	@env -u MAKELEVEL cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGET)
 	@echo "demo: [4/4] running the demo: the wall crash, rendered (about a minute)"
 	@bash tools/demo.sh $(BUILD_DIR)
