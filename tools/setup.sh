@@ -120,7 +120,8 @@ if [[ $status -ne 0 ]]; then
   exit 1
 fi
 
-# Every service unit and init script of a package this run installed (dependencies included).
+# Every service unit and init script of a package this run was asked to install (munge, slurmctld, slurmd;
+# not the dependencies apt brought with them, such as dbus, which the machine may need).
 units=()
 scripts=()
 while read -r p; do
@@ -132,7 +133,7 @@ while read -r p; do
       /etc/init.d/*) scripts+=("$(basename "$f")") ;;
     esac
   done < <(dpkg-query -L "$p" 2>/dev/null)
-done < <(comm -13 <(echo "$before") <(installed))
+done < <(comm -12 <(comm -13 <(echo "$before") <(installed)) <(printf '%s\n' "${missing[@]}" | sort))
 systemd_runs=false
 [[ -d /run/systemd/system ]] && systemd_runs=true
 for u in "${units[@]}"; do
