@@ -87,6 +87,12 @@ bool inside(const CylinderShape& s, const Eigen::Vector3d& x, double margin, Pen
   }
   const double radial_excess = distance - s.radius_m;    // > 0 outside the side
   const double axial_excess = std::max(-t, t - length);  // > 0 beyond an end
+  if (s.across_only) {                                   // out through the side only; nothing beyond an end
+    if (axial_excess > 0 || !(radial_excess < margin)) return false;
+    out.normal = radial_unit;
+    out.depth_m = -radial_excess;
+    return true;
+  }
   const Eigen::Vector3d axial_unit = t < 0.5 * length ? Eigen::Vector3d(-u) : u;
   if (radial_excess <= 0 && axial_excess <= 0) {  // inside: out through the nearer surface
     if (-radial_excess <= -axial_excess) {

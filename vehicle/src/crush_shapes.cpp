@@ -23,8 +23,9 @@ void CrushShapes::clear() {
 namespace {
 
 /// A post (a fixed cylinder or capsule) as deform's cylinder, whose push-out is exact: radially from its
-/// axis, or through an end. Extended into the ground by `down_m`'s part along its axis, and across the axis
-/// by the sweep (away from the car); a capsule's rounded ends become flat ones at its tips. (It was the box
+/// axis, never through an end (across_only: the body is cut by a post's top, not carried up it). Extended
+/// into the ground by `down_m`'s part along its axis, and across the axis by the sweep (away from the
+/// car); a capsule's rounded ends become flat ones at its tips. (It was the box
 /// around the post facing the sweep: as the sweep turned with the relative motion, the box turned about the
 /// post, and its corners, 41 % further out than the post, came into the control surface from nowhere.)
 deform::CylinderShape postCylinder(const ObstacleShape& post, const Eigen::Vector3d& sweep_m,
@@ -32,7 +33,7 @@ deform::CylinderShape postCylinder(const ObstacleShape& post, const Eigen::Vecto
   const Eigen::Vector3d along = post.b_m - post.a_m;
   const double length = along.norm();
   const Eigen::Vector3d axis = length > 1e-12 ? Eigen::Vector3d(along / length) : Eigen::Vector3d::UnitZ();
-  deform::CylinderShape cylinder{post.a_m, post.b_m, post.radius_m, sweep_m};
+  deform::CylinderShape cylinder{post.a_m, post.b_m, post.radius_m, sweep_m, true};
   if (post.type == ShapeType::Capsule) {
     cylinder.a_m -= post.radius_m * axis;
     cylinder.b_m += post.radius_m * axis;

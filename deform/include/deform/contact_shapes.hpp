@@ -44,6 +44,9 @@ struct CylinderShape {
   Eigen::Vector3d a_m{0, 0, 0}, b_m{0, 0, 0};  ///< axis ends [m]
   double radius_m = 0;                         ///< [m]
   Eigen::Vector3d sweep_m{0, 0, 0};            ///< extension across the axis [m]
+  /// Pushes across its axis only: its ends push nothing, and a point beyond an end is not in contact. A
+  /// post cuts the panel that meets its end rather than carrying it up its axis as a ramp would.
+  bool across_only = false;
 };
 
 /// The point of a convex shape furthest along `direction` [m]; `user` is ConvexSupportShape::user.
