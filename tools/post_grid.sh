@@ -4,6 +4,10 @@
 # given. One CSV row a run: what it ran, sandbox run's exit code, the energy watch's largest created share,
 # the highest the vehicle frame's origin rose, the largest deviation, tunnelled and diverged.
 #   tools/post_grid.sh SANDBOX OUT.csv PRESET...        e.g. tools/post_grid.sh build/bin/sandbox grid.csv fast balanced
+# The grid's axes can be set from the environment (each a space-separated list; POSTS of "radius height"
+# pairs separated by commas): POSTS, OFFSETS, SPEEDS, RATES. The defaults are the grid of STABILITY.md's
+# first table; its widened grid is
+#   POSTS="0.03 0.3,0.03 3.0,0.1 1.0,0.3 0.3,0.5 1.0,0.5 3.0" SPEEDS="60 150 250" RATES="60 500 1000"
 set -uo pipefail
 sandbox=$1
 out=$2
@@ -19,11 +23,12 @@ cat > "$scene" <<'JSON'
 JSON
 echo "preset,radius_m,height_m,offset_m,speed_kmh,physics_hz,exit,created_share,highest_m,max_deviation_m,tunnelled,diverged" > "$out"
 for preset in "$@"; do
-  for post in "0.1 1.5" "0.3 0.8" "0.3 2.5" "0.03 0.3" "0.5 3.0" "0.05 1.0"; do
+  IFS=, read -ra posts <<<"${POSTS:-0.1 1.5,0.3 0.8,0.3 2.5,0.03 0.3,0.5 3.0,0.05 1.0}"
+  for post in "${posts[@]}"; do
     read -r radius height <<<"$post"
-    for offset in 0 0.5 1.0; do
-      for speed in 60 100 150 200 250; do
-        for hz in 120 500 1000; do
+    for offset in ${OFFSETS:-0 0.5 1.0}; do
+      for speed in ${SPEEDS:-60 100 150 200 250}; do
+        for hz in ${RATES:-120 500 1000}; do
           run="$work/run"
           rm -rf "$run"
           "$sandbox" run "$scene" --out "$run" --set "vehicle.deformation.preset=$preset" \
