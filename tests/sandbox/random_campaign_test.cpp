@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <iterator>
 #include <utility>
 
 namespace {
@@ -44,8 +45,16 @@ TEST_CASE("random crash campaign: the scenes that broke an invariant hold them n
       {7, 14},  // a visual car into a crush car at 170 km/h: 124 kJ (38 %)
       {8, 54},  // a 628 kg tree at 213 km/h, stopped at the caps as if it stood still: 266 kJ (16.6 %)
       {8, 71},  // a tree and a wall at 204 km/h: 876 kJ (8.1 %)
+      {9, 43},  // a car at rest drove onto a box: the launch bound had left out the engine's work
   };
-  for (const auto& [seed, i] : broken) {
+  // Under AddressSanitizer the first two (13 s here for the seven in Release), as the campaign's scenes.
+#if defined(__SANITIZE_ADDRESS__)
+  const std::size_t replayed = 2;
+#else
+  const std::size_t replayed = std::size(broken);
+#endif
+  for (std::size_t k = 0; k < replayed; ++k) {
+    const auto& [seed, i] = broken[k];
     const sandbox::RandomOutcome outcome = sandbox::runRandomScene(seed, i);
     INFO(outcome.scene.name << ": " << sandbox::randomTableRow(outcome));
     CHECK(outcome.passed);
