@@ -67,7 +67,7 @@ RunVerdict checkRandomRun(const scenes::SceneRun& run, const std::vector<CarTrac
   const double gravity_mps2 = run.scene().gravity_mps2;
   // Every car's energy before it hit anything, or the energy through the whole run (the watch's: the
   // start's, the engines' work and the potential energy given up) where that is more: the most any car can
-  // be raised with. (A car at rest that drove onto a box rose 0.51 m on its engine's work.)
+  // be raised with (a car at rest raised by its engine's work alone).
   double brought_J = 0;
   for (std::size_t i = 0; i < run.carCount(); ++i)
     brought_J += std::max(traces[i].kinetic_before_impact_J,
