@@ -160,3 +160,36 @@ TEST_CASE("a low thin stub at 200 km/h cuts the body and does not lift the car",
   CHECK(m.energy.plastic_work_J > 0);  // it did meet the stub
   CHECK(highest_m - start_m < 0.5);    // measured 0.04 m
 }
+
+TEST_CASE("a crush car's rigid parts meet a post across its axis only", "[watch]") {
+  // A post of 0.3 m radius and height at 250 km/h: the chassis's backstop reaches it. ODE's contacts of the
+  // backstop with the post act across its axis (no normal and no friction along it): at the rim, a normal
+  // half up the axis turned the car's motion up it as a ramp would.
+  const nlohmann::json scene = {
+      {"duration_s", 0.3},
+      {"physics_hz", 500},
+      {"vehicle",
+       {{"mesh", "builtin:sedan?vertices=2000"},
+        {"mass_kg", 1500},
+        {"coupling", "crush"},
+        {"start", {{"speed_kmh", 250}}},
+        {"deformation", {{"preset", "fast"}}}}},
+      {"obstacles", {{{"type", "post"}, {"position_m", {6.0, 0.0}}, {"radius_m", 0.3}, {"height_m", 0.3}}}}};
+  scenes::SceneRun run(scenes::parseScene(scene, "low_post.json"));
+  int rigid_contacts = 0;
+  double steepest = 0;  // the largest vertical part of a rigid contact's normal or force [1]
+  while (!run.finished()) {
+    run.step();
+    for (const vehicle::ContactPoint& c : run.simulation().world().contacts()) {
+      const bool post =
+          c.b.kind == vehicle::EntityRef::Kind::Obstacle || c.a.kind == vehicle::EntityRef::Kind::Obstacle;
+      const bool car = c.a.kind == vehicle::EntityRef::Kind::Car || c.b.kind == vehicle::EntityRef::Kind::Car;
+      if (!c.rigid || !post || !car || std::abs(c.normal.z()) > 0.999) continue;  // not the ground's
+      ++rigid_contacts;
+      steepest = std::max(steepest, std::abs(c.normal.z()));
+      if (c.force_on_a_N.norm() > 0) steepest = std::max(steepest, std::abs(c.force_on_a_N.normalized().z()));
+    }
+  }
+  REQUIRE(rigid_contacts > 0);  // the backstop did reach the post
+  CHECK(steepest < 1e-9);
+}
