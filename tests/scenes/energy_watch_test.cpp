@@ -10,19 +10,23 @@
 
 namespace {
 
-// The built-in sedan into a post of radius 0.1 m, 1.5 m high, 6 m ahead and `offset_m` to the left.
-scenes::SceneConfig postScene(double speed_kmh, double offset_m, double physics_hz, const char* preset) {
-  const nlohmann::json scene = {
-      {"duration_s", 1.0},
-      {"physics_hz", physics_hz},
-      {"vehicle",
-       {{"mesh", "builtin:sedan?vertices=2000"},
-        {"mass_kg", 1500},
-        {"coupling", "crush"},
-        {"start", {{"speed_kmh", speed_kmh}}},
-        {"deformation", {{"preset", preset}}}}},
-      {"obstacles",
-       {{{"type", "post"}, {"position_m", {6.0, offset_m}}, {"radius_m", 0.1}, {"height_m", 1.5}}}}};
+// The built-in sedan into a post 6 m ahead and `offset_m` to the left (by default of radius 0.1 m and
+// 1.5 m high), for `duration_s`.
+scenes::SceneConfig postScene(double speed_kmh, double offset_m, double physics_hz, const char* preset,
+                              double radius_m = 0.1, double height_m = 1.5, double duration_s = 1.0) {
+  const nlohmann::json scene = {{"duration_s", duration_s},
+                                {"physics_hz", physics_hz},
+                                {"vehicle",
+                                 {{"mesh", "builtin:sedan?vertices=2000"},
+                                  {"mass_kg", 1500},
+                                  {"coupling", "crush"},
+                                  {"start", {{"speed_kmh", speed_kmh}}},
+                                  {"deformation", {{"preset", preset}}}}},
+                                {"obstacles",
+                                 {{{"type", "post"},
+                                   {"position_m", {6.0, offset_m}},
+                                   {"radius_m", radius_m},
+                                   {"height_m", height_m}}}}};
   return scenes::parseScene(scene, "post.json");
 }
 
@@ -137,17 +141,7 @@ TEST_CASE("a low thin stub at 200 km/h cuts the body and does not lift the car",
   // A post of radius 3 cm and 0.3 m high under the sloping front. Pushed along the faces' normals and up
   // its end, the front rode up it as up a ramp: the car left it 7.7 m up, with no energy created. A post
   // pushes across its axis only (deform's CylinderShape::across_only).
-  const nlohmann::json scene = {
-      {"duration_s", 1.5},
-      {"physics_hz", 500},
-      {"vehicle",
-       {{"mesh", "builtin:sedan?vertices=2000"},
-        {"mass_kg", 1500},
-        {"coupling", "crush"},
-        {"start", {{"speed_kmh", 200}}},
-        {"deformation", {{"preset", "balanced"}}}}},
-      {"obstacles", {{{"type", "post"}, {"position_m", {6.0, 0.0}}, {"radius_m", 0.03}, {"height_m", 0.3}}}}};
-  scenes::SceneRun run(scenes::parseScene(scene, "stub.json"));
+  scenes::SceneRun run(postScene(200, 0.0, 500, "balanced", 0.03, 0.3, 1.5));
   const vehicle::World& world = run.simulation().world();
   const double start_m = world.car(run.carId(0)).bodyPose().position_m.z();
   double highest_m = start_m;
@@ -165,17 +159,7 @@ TEST_CASE("a crush car's rigid parts meet a post across its axis only", "[watch]
   // A post of 0.3 m radius and height at 250 km/h: the chassis's backstop reaches it. ODE's contacts of the
   // backstop with the post act across its axis (no normal and no friction along it): at the rim, a normal
   // half up the axis turned the car's motion up it as a ramp would.
-  const nlohmann::json scene = {
-      {"duration_s", 0.3},
-      {"physics_hz", 500},
-      {"vehicle",
-       {{"mesh", "builtin:sedan?vertices=2000"},
-        {"mass_kg", 1500},
-        {"coupling", "crush"},
-        {"start", {{"speed_kmh", 250}}},
-        {"deformation", {{"preset", "fast"}}}}},
-      {"obstacles", {{{"type", "post"}, {"position_m", {6.0, 0.0}}, {"radius_m", 0.3}, {"height_m", 0.3}}}}};
-  scenes::SceneRun run(scenes::parseScene(scene, "low_post.json"));
+  scenes::SceneRun run(postScene(250, 0.0, 500, "fast", 0.3, 0.3, 0.3));
   int rigid_contacts = 0;
   double steepest = 0;  // the largest vertical part of a rigid contact's normal or force [1]
   while (!run.finished()) {
