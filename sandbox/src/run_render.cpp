@@ -168,6 +168,18 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
 RunRenderer::~RunRenderer() = default;
 
 render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes& times) {
+  draw(run, times);
+  const auto start = Clock::now();
+  render::Image image = readback();
+  times.render_ms += msSince(start);
+  return image;
+}
+
+render::Image RunRenderer::readback() {
+  return renderer_->readPixels();
+}
+
+void RunRenderer::draw(const scenes::SceneRun& run, scenes::StageTimes& times) {
   const vehicle::Simulation& simulation = run.simulation();
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
@@ -240,9 +252,8 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   }
   for (const ObstacleMesh& o : obstacles_)
     renderer_->setTransform(o.mesh, matrixOf(world.obstaclePose(o.id)));
-  render::Image image = renderer_->renderImage(camera, environment_);
+  renderer_->render(camera, environment_);
   times.render_ms += msSince(start);
-  return image;
 }
 
 std::vector<Eigen::Vector3d> embeddedShifts_m(const deform::Skin& skin,

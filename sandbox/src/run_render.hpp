@@ -30,6 +30,11 @@ class RunRenderer {
 
   /// Embeds the render meshes for the control points now (embed time) and draws the frame (render time).
   render::Image frame(const scenes::SceneRun& run, scenes::StageTimes& times);
+  /// frame() in its two steps, for `bench render`: draw() embeds and submits the frame (the rasteriser
+  /// may still be working when it returns); readback() waits for it and reads it.
+  void draw(const scenes::SceneRun& run, scenes::StageTimes& times);
+  render::Image readback();
+  render::Renderer& renderer() { return *renderer_; }
 
   /// Cars x frames whose embedding was skipped because the car was out of the camera's view.
   std::size_t embedsOutOfView() const { return embeds_out_of_view_; }

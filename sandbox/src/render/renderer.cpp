@@ -391,6 +391,11 @@ void Renderer::render(const Camera& camera, const Environment& environment) {
   gl::checkError("rendering a frame");
 }
 
+void Renderer::finish() {
+  context_->makeCurrent();
+  gl::Finish();
+}
+
 Image Renderer::readPixels() {
   context_->makeCurrent();
   Image image;

@@ -47,6 +47,8 @@ class Renderer {
 
   /// Draws one frame. Read it with readPixels().
   void render(const Camera& camera, const Environment& environment);
+  /// Waits until the rasteriser has finished what was submitted (for timing the stages apart).
+  void finish();
   /// The last frame, rows top to bottom.
   Image readPixels();
   /// render() then readPixels().
