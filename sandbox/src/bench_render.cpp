@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/video_writer.hpp"
 #include "run_render.hpp"
@@ -85,6 +86,19 @@ nlohmann::ordered_json runRenderBench(const RenderBenchOptions& options) {
     (void)renderer.readback();
   }
 
+  // As `sandbox run`: each frame smoothed and encoded on a worker while the next one renders; the
+  // render loop's wait for it is the encode stage.
+  FrameWriter writer([&](render::Image& image, int k) {
+    renderer.finishFrame(image);
+    if (options.encode == "png") {
+      char name[32];
+      std::snprintf(name, sizeof name, "%05d.png", k);
+      render::writePng((out / "frames" / name).string(), image.width, image.height, image.rgba);
+    } else if (video) {
+      video->addFrame(image.rgba);
+    }
+  });
+
   double render_ms = 0, readback_ms = 0, encode_ms = 0, embed_ms = 0;
   for (int k = 0; k < options.frames; ++k) {
     run.stepUntil(frameTime(k));
@@ -96,24 +110,17 @@ nlohmann::ordered_json runRenderBench(const RenderBenchOptions& options) {
     embed_ms += times.embed_ms - before.embed_ms;
 
     start = Clock::now();
-    const render::Image image = renderer.readback();
+    render::Image image = renderer.readback();
     readback_ms += msSince(start);
 
     start = Clock::now();
-    if (options.encode == "png") {
-      char name[32];
-      std::snprintf(name, sizeof name, "%05d.png", k);
-      render::writePng((out / "frames" / name).string(), image.width, image.height, image.rgba);
-    } else if (video) {
-      video->addFrame(image.rgba);
-    }
+    writer.add(std::move(image), k);
     encode_ms += msSince(start);
   }
-  if (video) {
-    const auto start = Clock::now();
-    video->finish();
-    encode_ms += msSince(start);
-  }
+  const auto start = Clock::now();
+  writer.finish();
+  if (video) video->finish();
+  encode_ms += msSince(start);
 
   const double n = options.frames;
   nlohmann::ordered_json result;

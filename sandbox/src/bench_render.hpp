@@ -23,7 +23,8 @@ struct RenderBenchOptions {
 
 /// Steps the scene (untimed) to each frame's time and draws, reads back and encodes the frame, timing
 /// each stage. Returns {scene, width, height, frames, warmup, encode, renderer, ms_per_frame: {render,
-/// readback, encode, total}, embed_ms_per_frame}; means over the timed frames, the video's closing
+/// readback, encode, total}, embed_ms_per_frame}; means over the timed frames. Encode is what the render
+/// loop waits for the worker that finishes (edge smoothing) and encodes the frames, the video's closing
 /// (ffmpeg draining its queue) shared among them. Throws deform::InputError for bad options.
 nlohmann::ordered_json runRenderBench(const RenderBenchOptions& options);
 
