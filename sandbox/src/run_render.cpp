@@ -141,9 +141,9 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
 
   start = Clock::now();
   render::RenderSettings settings{outputs.width, outputs.height, outputs.samples};
-  // A scene's frames are a video: its anti-aliasing (outputs.samples > 1) is edge smoothing after the
-  // readback, which looks as smooth as 4x MSAA at 60 % of the frame's cost on llvmpipe, and its shadow map
-  // is 1024 texels wide, which the soft penumbra hides (the frames are within 1/255 on average).
+  // A scene's frames are a video, drawn for speed: its anti-aliasing (outputs.samples > 1) is edge
+  // smoothing after the readback rather than llvmpipe's costly 4x MSAA, and its shadow map is 1024 texels
+  // wide, which the soft penumbra hides (docs/BENCHMARKS.md compares the frames with the old ones).
   settings.smooth_edges = outputs.samples > 1;
   settings.shadow_map_size = 1024;
   renderer_ = std::make_unique<render::Renderer>(settings);
