@@ -93,7 +93,8 @@ nlohmann::ordered_json runRenderBench(const RenderBenchOptions& options) {
     if (options.encode == "png") {
       char name[32];
       std::snprintf(name, sizeof name, "%05d.png", k);
-      render::writePng((out / "frames" / name).string(), image.width, image.height, image.rgba);
+      render::writePng((out / "frames" / name).string(), image.width, image.height, image.rgba,
+                       render::PngCompression::Fast);
     } else if (video) {
       video->addFrame(image.rgba);
     }

@@ -196,7 +196,8 @@ RunResult runScene(const RunOptions& options) {
     writer = std::make_unique<FrameWriter>([&](render::Image& image, int frame) {
       renderer->finishFrame(image);
       if (outputs.frames)
-        render::writePng((out / "frames" / frameName(frame)).string(), image.width, image.height, image.rgba);
+        render::writePng((out / "frames" / frameName(frame)).string(), image.width, image.height, image.rgba,
+                         render::PngCompression::Fast);
       if (video) video->addFrame(image.rgba);
     });
   }
