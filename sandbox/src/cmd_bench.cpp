@@ -98,6 +98,7 @@ void registerBenchCommands(CLI::App& app) {
   registerBenchMemoryCommand(*bench);
   registerBenchGridCommand(*bench);
   registerBenchCarsCommand(*bench);
+  registerBenchRenderCommand(*bench);
 }
 
 }  // namespace sandbox

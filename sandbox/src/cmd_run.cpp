@@ -18,6 +18,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/video_writer.hpp"
 #include "run_command.hpp"
@@ -189,6 +190,17 @@ RunResult runScene(const RunOptions& options) {
         (out / "video.mp4").string(), render::VideoSettings{outputs.width, outputs.height, outputs.fps});
   }
 
+  // Frames are smoothed and written on a worker while the next one renders.
+  std::unique_ptr<FrameWriter> writer;
+  if (draw) {
+    writer = std::make_unique<FrameWriter>([&](render::Image& image, int frame) {
+      renderer->finishFrame(image);
+      if (outputs.frames)
+        render::writePng((out / "frames" / frameName(frame)).string(), image.width, image.height, image.rgba,
+                         render::PngCompression::Fast);
+      if (video) video->addFrame(image.rgba);
+    });
+  }
   if (draw) times.render_ms += secondsSince(render_setup) * 1e3;
 
   // One frame (and timeline row) every playback_speed / fps simulated seconds, from t = 0 to the end.
@@ -208,12 +220,9 @@ RunResult runScene(const RunOptions& options) {
     if (save && !saved && frame * frame_dt_s >= save_at_s - half_step_s) saveNow();
     run.stepUntil(frame * frame_dt_s);
     if (renderer) {
-      const render::Image image = renderer->frame(run, times);
+      renderer->draw(run, times);
       const auto write_start = Clock::now();
-      if (outputs.frames) {
-        render::writePng((out / "frames" / frameName(frame)).string(), image.width, image.height, image.rgba);
-      }
-      if (video) video->addFrame(image.rgba);
+      writer->add(renderer->readback(), frame);
       times.render_ms += secondsSince(write_start) * 1e3;
       ++result.frames;
     }
@@ -232,6 +241,11 @@ RunResult runScene(const RunOptions& options) {
   }
   if (save && !saved) saveNow();
   run.runToEnd();
+  if (writer) {
+    const auto finish_start = Clock::now();
+    writer->finish();
+    times.render_ms += secondsSince(finish_start) * 1e3;
+  }
   if (video) {
     const auto finish_start = Clock::now();
     video->finish();

@@ -25,6 +25,8 @@ void registerBenchMemoryCommand(CLI::App& bench);
 void registerBenchGridCommand(CLI::App& bench);
 /// `sandbox bench cars` (many cars, 1 and 2 threads), in cmd_bench_cars.cpp.
 void registerBenchCarsCommand(CLI::App& bench);
+/// `sandbox bench render` (offscreen frames by stage), in bench_render.cpp.
+void registerBenchRenderCommand(CLI::App& bench);
 /// `sandbox mesh render` (offscreen picture of a mesh), in cmd_mesh_render.cpp.
 void registerMeshRenderCommand(CLI::App& mesh);
 /// `sandbox run` (play a scene: summary, timeline, frames, video), in cmd_run.cpp.

@@ -140,8 +140,13 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
   times.embed_ms += msSince(start);
 
   start = Clock::now();
-  renderer_ = std::make_unique<render::Renderer>(
-      render::RenderSettings{outputs.width, outputs.height, outputs.samples});
+  render::RenderSettings settings{outputs.width, outputs.height, outputs.samples};
+  // A scene's frames are a video, drawn for speed: its anti-aliasing (outputs.samples > 1) is edge
+  // smoothing after the readback rather than llvmpipe's costly 4x MSAA, and its shadow map is 1024 texels
+  // wide, which the soft penumbra hides (docs/BENCHMARKS.md compares the frames with the old ones).
+  settings.smooth_edges = outputs.samples > 1;
+  settings.shadow_map_size = 1024;
+  renderer_ = std::make_unique<render::Renderer>(settings);
   for (std::size_t i = 0; i < run.carCount(); ++i) {
     std::vector<render::MeshData> meshes =
         render::vehicleMeshes(run.model(i), run.scene().vehicles[i].colour);
@@ -168,6 +173,23 @@ RunRenderer::RunRenderer(const scenes::SceneRun& run, const scenes::OutputConfig
 RunRenderer::~RunRenderer() = default;
 
 render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes& times) {
+  draw(run, times);
+  const auto start = Clock::now();
+  render::Image image = readback();
+  finishFrame(image);
+  times.render_ms += msSince(start);
+  return image;
+}
+
+render::Image RunRenderer::readback() {
+  return renderer_->readPixels();
+}
+
+void RunRenderer::finishFrame(render::Image& image) const {
+  renderer_->finishImage(image);
+}
+
+void RunRenderer::draw(const scenes::SceneRun& run, scenes::StageTimes& times) {
   const vehicle::Simulation& simulation = run.simulation();
   const vehicle::World& world = simulation.world();
   auto start = Clock::now();
@@ -240,9 +262,8 @@ render::Image RunRenderer::frame(const scenes::SceneRun& run, scenes::StageTimes
   }
   for (const ObstacleMesh& o : obstacles_)
     renderer_->setTransform(o.mesh, matrixOf(world.obstaclePose(o.id)));
-  render::Image image = renderer_->renderImage(camera, environment_);
+  renderer_->render(camera, environment_);
   times.render_ms += msSince(start);
-  return image;
 }
 
 std::vector<Eigen::Vector3d> embeddedShifts_m(const deform::Skin& skin,

@@ -30,6 +30,13 @@ class RunRenderer {
 
   /// Embeds the render meshes for the control points now (embed time) and draws the frame (render time).
   render::Image frame(const scenes::SceneRun& run, scenes::StageTimes& times);
+  /// frame() in its three steps, so that the last can run on another thread while the next frame draws:
+  /// draw() embeds and submits the frame (the rasteriser may still be working when it returns);
+  /// readback() waits for it and reads it; finishFrame() smooths its edges (any thread).
+  void draw(const scenes::SceneRun& run, scenes::StageTimes& times);
+  render::Image readback();
+  void finishFrame(render::Image& image) const;
+  render::Renderer& renderer() { return *renderer_; }
 
   /// Cars x frames whose embedding was skipped because the car was out of the camera's view.
   std::size_t embedsOutOfView() const { return embeds_out_of_view_; }

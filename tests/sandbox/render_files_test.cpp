@@ -97,6 +97,9 @@ TEST_CASE("writePng then readPng gives back the same pixels", "[render]") {
   CHECK(back.width == image.width);
   CHECK(back.height == image.height);
   CHECK(back.rgba == image.rgba);
+  // The fast compression of a run's frames is lossless too.
+  writePng(path, image.width, image.height, image.rgba, PngCompression::Fast);
+  CHECK(readPng(path).rgba == image.rgba);
   fs::remove_all(dir);
 }
 

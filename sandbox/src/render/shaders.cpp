@@ -147,8 +147,8 @@ in vec4 v_light_clip;
 uniform vec2 u_centre;
 uniform float u_radius;
 uniform float u_grid_spacing;
-uniform vec3 u_ground_colour;
-uniform vec3 u_line_colour;
+uniform vec3 u_ground_linear;  // the ground's colour, linear (converted once, not per pixel)
+uniform vec3 u_line_linear;    // the grid lines' colour, linear
 uniform vec3 u_horizon;
 out vec4 o_colour;
 
@@ -166,10 +166,12 @@ float gridLines(vec2 xy, float spacing, float width_px) {
 void main() {
   float minor = gridLines(v_world.xy, u_grid_spacing, 1.0) * 0.55;
   float major = gridLines(v_world.xy, 5.0 * u_grid_spacing, 1.6);
-  vec3 albedo = mix(toLinear(u_ground_colour), toLinear(u_line_colour), max(minor, major));
-  vec3 n = vec3(0.0, 0.0, 1.0);
+  vec3 albedo = mix(u_ground_linear, u_line_linear, max(minor, major));
   float visibility = sunVisibility(v_light_clip, u_sun_direction.z);
-  vec3 colour = shade(albedo, n, v_world, visibility, 0.0, 1.0);
+  // shade() for the normal (0, 0, 1) without a highlight: the ambient is the sky's alone, and the
+  // per-pixel view vectors and powers the ground does not need are skipped (the ground covers most
+  // of the frame).
+  vec3 colour = albedo * (u_sky_ambient + u_sun_radiance * max(u_sun_direction.z, 0.0) * visibility);
   // Fade into the horizon so the plane's edge never shows.
   float fade = smoothstep(0.3 * u_radius, 0.95 * u_radius, length(v_world.xy - u_centre));
   o_colour = vec4(mix(toDisplay(colour), u_horizon, fade), 1.0);
