@@ -211,13 +211,9 @@ uint32_t DeformableBody::findFaceContacts(const ContactShape& shape, uint32_t sh
     Eigen::Vector3d push_normal{0, 0, 0};
     if (twice_area > 0) {
       push_normal = -outward / twice_area;
-      if (const auto* post = std::get_if<CylinderShape>(&shape); post && post->across_only) {
-        const Eigen::Vector3d axis = (post->b_m - post->a_m).normalized();
-        const Eigen::Vector3d across = push_normal - push_normal.dot(axis) * axis;
-        constexpr double kLeastAcross = 0.5;  // as the rigid stop's (body_yield.cpp)
-        push_normal =
-            across.norm() >= kLeastAcross ? Eigen::Vector3d(across.normalized()) : Eigen::Vector3d::Zero();
-      }
+      if (const auto* post = std::get_if<CylinderShape>(&shape); post && post->across_only)
+        if (!acrossAxis(push_normal, (post->b_m - post->a_m).normalized(), push_normal))
+          push_normal.setZero();
     }
     if (push_normal.squaredNorm() > 0) {
       const Eigen::Vector3d normal = outward / twice_area;

@@ -39,12 +39,7 @@ void DeformableBody::capDeviation(double h, const StepInputs& inputs, Eigen::Vec
     if (const auto* cylinder = std::get_if<CylinderShape>(&contact)) axis = cylinder->b_m - cylinder->a_m;
     if (const auto* capsule = std::get_if<CapsuleShape>(&contact)) axis = capsule->b_m - capsule->a_m;
     if (!(axis.squaredNorm() > 0)) return true;
-    axis.normalize();
-    const Eigen::Vector3d across = normal - normal.dot(axis) * axis;
-    constexpr double kLeastAcross = 0.5;  // a normal within 30 degrees of the axis: the end's, no stop
-    if (!(across.norm() >= kLeastAcross)) return false;
-    out = across.normalized();
-    return true;
+    return acrossAxis(normal, axis.normalized(), out);  // an end's normal: no stop
   };
   if (stops) {
     Eigen::Vector3d normal;

@@ -174,6 +174,14 @@ void requireNonNegative(double value, const std::string& field) {
 
 }  // namespace
 
+bool acrossAxis(const Eigen::Vector3d& normal, const Eigen::Vector3d& axis, Eigen::Vector3d& out) {
+  constexpr double kLeastAcross = 0.5;  // sin 30 degrees
+  const Eigen::Vector3d across = normal - normal.dot(axis) * axis;
+  if (!(across.norm() >= kLeastAcross)) return false;
+  out = across.normalized();
+  return true;
+}
+
 bool distanceIsLipschitz(const ContactShape& shape) {
   if (std::holds_alternative<SphereShape>(shape) || std::holds_alternative<CapsuleShape>(shape) ||
       std::holds_alternative<CylinderShape>(shape))

@@ -150,11 +150,12 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
     const ObstacleShape world_shape = worldShapeOf(other);
     ObstacleShape local = transformShape(world_shape, frame);
     // A free body (a box, a tree, a rigid or visual car) takes the body's reaction at its centre of mass
-    // (finishCar), so deform moves it as a particle: at its centre's velocity, without its turn. With the
-    // velocity of its material at the contact, a tree held at its foot by the ground was pushed at the
-    // slower speed of its lower trunk while the push sped up its centre: it left faster than the car, 4.4 kJ
-    // created at 10 km/h.
-    const bool free_body = crush && world.inverseMass_per_kg(other) > 0;
+    // (finishCar, centreOf), so deform moves it as a particle: at its centre's velocity, without its turn.
+    // With the velocity of its material at the contact, a tree held at its foot by the ground was pushed at
+    // the slower speed of its lower trunk while the push sped up its centre: it left faster than the car, 4.4
+    // kJ created at 10 km/h.
+    const double w_other = crush ? world.inverseMass_per_kg(other) : 0.0;
+    const bool free_body = w_other > 0;
     Eigen::Vector3d relative_mps =
         to_vehicle *
         ((free_body ? velocityOf(other) : velocityOf(other, core_world_m)) - velocityOf(self, core_world_m));
@@ -200,7 +201,6 @@ void Simulation::Impl::prepareCar(DeformableCar& dc) const {
     // contact with a visual car's hull: taken as immovable, a visual car drove into the body as a piston
     // and gave it momentum nobody lost.) Another crush car is a partner, not here. Visual: what the
     // chassis hits moves by ODE's contact alone.
-    const double w_other = free_body ? world.inverseMass_per_kg(other) : 0.0;
     inputs.contact_inverse_mass_per_kg.push_back(w_other);
     inputs.contact_keys.push_back(w_other > 0 ? freeObstacleKey(other) : 0);
     // What holds it (ODE's contacts with the ground and static things this step), out of them.
@@ -364,7 +364,7 @@ void Simulation::Impl::finishCar(DeformableCar& dc) {
       const Eigen::Vector3d impulse =
           frame.orientation * Eigen::Vector3d(report.obstacle_velocity_change_mps[k] / w_other);
       if (impulse.squaredNorm() > 0 && impulse.allFinite())
-        world.applyImpulse(other, impulse, interiorPoint(worldShapeOf(other)));
+        world.applyImpulse(other, impulse, centreOf(other));  // as deform moved it: no turn
       const Eigen::Vector3d moved = report.obstacle_displacement_m[k];
       if (moved.squaredNorm() > 0 && moved.allFinite()) world.shift(other, frame.orientation * moved);
     }

@@ -222,10 +222,15 @@ struct Simulation::Impl {
     return velocityOf(e);
   }
 
+  /// A car's centre of mass, or a free obstacle's (its body's origin) (world) [m].
+  Eigen::Vector3d centreOf(EntityRef e) const {
+    if (e.kind == EntityRef::Kind::Car) return world.car(e.index).bodyPose().position_m;
+    return world.obstaclePose(e.index).position_m;
+  }
   /// The velocity of a car's centre of mass, or of a free obstacle's (its body's origin) [m/s].
   Eigen::Vector3d velocityOf(EntityRef e) const {
     if (e.kind == EntityRef::Kind::Car) return world.car(e.index).velocity_mps();
-    return world.obstacleVelocity_mps(e.index, world.obstaclePose(e.index).position_m);
+    return world.obstacleVelocity_mps(e.index, centreOf(e));
   }
   /// The velocity of `e`'s material at the world point `p_m` [m/s] (velocityOf plus its turn): a box
   /// falling on a car comes at its own speed, and does its work on the body (EnergyTerms).

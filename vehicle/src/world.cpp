@@ -4,6 +4,7 @@
 
 #include "ode_support.hpp"
 
+#include <deform/contact_shapes.hpp>
 #include <deform/error.hpp>
 
 #include <atomic>
@@ -236,11 +237,8 @@ struct World::Impl {
       if (cls != dCylinderClass && cls != dCapsuleClass) continue;
       const dReal* r = dGeomGetRotation(g);  // 3x4, row-major: the local z axis is its third column
       const Eigen::Vector3d axis(r[2], r[6], r[10]);
-      const Eigen::Vector3d normal = ode::vec(contact.normal);
-      const Eigen::Vector3d across = normal - normal.dot(axis) * axis;
-      constexpr double kLeastAcross = 0.5;
-      if (!(across.norm() >= kLeastAcross)) return false;
-      const Eigen::Vector3d unit = across.normalized();
+      Eigen::Vector3d unit;
+      if (!deform::acrossAxis(ode::vec(contact.normal), axis, unit)) return false;
       for (int k = 0; k < 3; ++k) contact.normal[k] = unit[k];
       around = axis.cross(unit).normalized();
     }

@@ -134,6 +134,11 @@ void bisectSurface(const ContactShape& shape, Eigen::Vector3d& outside_m, Eigen:
 /// which has none (it is unbounded); the direction need not be unit.
 bool supportPoint(const ContactShape& shape, const Eigen::Vector3d& direction, Eigen::Vector3d& out_m);
 
+/// How a post pushes (CylinderShape::across_only): `out` becomes the part of the unit `normal` across the
+/// unit `axis`, made unit, when it is at least half of it (the normal at least 30 degrees off the axis);
+/// false for a normal closer to the axis (a post's end, which pushes nothing).
+bool acrossAxis(const Eigen::Vector3d& normal, const Eigen::Vector3d& axis, Eigen::Vector3d& out);
+
 /// True when penetration()'s depth for `shape` is minus the Euclidean distance outside it, so that it
 /// changes by at most the distance a point moves: a sphere, a capsule, a cylinder (swept or not), and a
 /// box whose axes are orthonormal within 1e-9 (its depth outside is the largest distance beyond a face
