@@ -212,14 +212,27 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   for (std::size_t i = 0; i < old_n; ++i)
     spoke_stretch_m[i] =
         (state.positions_m[i] - settings.core_m - settings.spoke_anchor_m[i]).norm() - state.spoke_rest_m[i];
+  // Masses: a new point draws what the fan gives it, and what its own new points draw from it, half from
+  // each end of its edge, so every move of mass is an equal share of two points to their midpoint and the
+  // centre of mass and momentum stay. Drawn from one new point after another in turn, mass thinned out
+  // down the levels (to 1e-5 kg on the 60-point sedan refined to 600, light points a ball pushed through).
+  // No point the body had gives more than three quarters of its mass: the draws shrink together if one would.
+  std::vector<double> draw_kg(n, 0.0);
+  for (std::size_t k = n; k-- > old_n;) {
+    draw_kg[k] += fan.point_mass_kg[k];
+    const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
+    draw_kg[a] += 0.5 * draw_kg[k];
+    draw_kg[b] += 0.5 * draw_kg[k];
+  }
+  double share = 1.0;
+  for (std::size_t i = 0; i < old_n; ++i)
+    if (draw_kg[i] > 0.75 * settings.mass_kg[i])
+      share = std::min(share, 0.75 * settings.mass_kg[i] / draw_kg[i]);
+  for (std::size_t i = 0; i < old_n; ++i) masses.point_mass_kg[i] -= share * draw_kg[i];
+  for (std::size_t k = old_n; k < n; ++k) masses.point_mass_kg[k] = share * fan.point_mass_kg[k];
   std::vector<char> moved(n, 0);
   for (std::size_t k = old_n; k < n; ++k) {
     const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
-    std::vector<double>& m = masses.point_mass_kg;
-    const double half_kg = std::min({0.5 * fan.point_mass_kg[k], 0.25 * m[a], 0.25 * m[b]});
-    m[a] -= half_kg;
-    m[b] -= half_kg;
-    m[k] = 2.0 * half_kg;
     out.positions_m[k] = 0.5 * (out.positions_m[a] + out.positions_m[b]);
     out.velocities_mps[k] = 0.5 * (out.velocities_mps[a] + out.velocities_mps[b]);
     out.column_rest_m[k] = 0.5 * (out.column_rest_m[a] + out.column_rest_m[b]);

@@ -81,10 +81,25 @@ uint32_t SurfaceHierarchy::across(uint32_t node, int k) const {
 
 bool SurfaceHierarchy::split(uint32_t node, std::size_t max_points) {
   if (node >= nodes_.size() || !isLeaf(node)) return false;
-  // A refinement that would pass the bound is undone whole: the grading and closure it started too.
-  SurfaceHierarchy before = *this;
+  const Mark start = mark();
+  const std::size_t splits = split_order_.size();
   if (splitGraded(node, max_points) && rest_points_m_.size() <= max_points) return true;
-  *this = std::move(before);
+  // A refinement that would pass the bound is undone whole, the grading and closure it started too: the
+  // nodes, points and edges it added go, and the nodes it split are leaves again.
+  for (std::size_t id = start.nodes; id < nodes_.size(); ++id) {
+    const auto& t = nodes_[id].corners;
+    for (int k = 0; k < 3; ++k)
+      edge_owner_.erase(directed(t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]));
+  }
+  for (std::size_t k = start.points; k < rest_points_m_.size(); ++k) {
+    const auto [a, b] = parents_[k - base_points_];
+    edge_midpoint_.erase(undirected(a, b));
+  }
+  for (std::size_t i = splits; i < split_order_.size(); ++i) nodes_[split_order_[i]].first_child = kNone;
+  nodes_.resize(start.nodes);
+  rest_points_m_.resize(start.points);
+  parents_.resize(start.points - base_points_);
+  split_order_.resize(splits);
   return false;
 }
 

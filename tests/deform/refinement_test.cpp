@@ -275,3 +275,53 @@ TEST_CASE("a dent keeps its shape through a refinement", "[refine]") {
   CHECK(bodyEnergy(*fine.settings, fine.state).elastic_J < 1.25 * bodyEnergy(*d.settings, d.state).elastic_J);
   CHECK(moved < 0.2 * dent);
 }
+
+TEST_CASE("a contact refines where a small obstacle comes, and a flat one nowhere", "[refine]") {
+  const ControlMesh base = dynamics_test::sedanControlMesh(60);
+  double side = 1e9;
+  for (const auto& p : base.points_m) side = std::min(side, p.y());
+  const Eigen::Vector3d door(base.centre_of_mass_m.x(), side - 0.12, base.centre_of_mass_m.z());
+  ContactRefinement rule;  // edges of half the obstacle's radius near it, 5 cm at least
+  {                        // a wall along the car's side, 5 cm off: flat, no split
+    SurfaceHierarchy h(base);
+    std::vector<Eigen::Vector3d> x = base.points_m;
+    const RefinementOutcome outcome =
+        splitNearContacts(h, x, {HalfSpaceShape{Eigen::Vector3d(0, 1, 0), side - 0.05}}, rule);
+    CHECK(outcome.splits == 0);
+    CHECK(x.size() == base.points_m.size());
+  }
+  // A ball of 0.1 m radius 2 cm from the door: the leaves near it split until their edges are 5 cm; the far
+  // end of the car keeps its start level.
+  SurfaceHierarchy h(base);
+  std::vector<Eigen::Vector3d> x = base.points_m;
+  const RefinementOutcome outcome = splitNearContacts(h, x, {SphereShape{door, 0.1}}, rule);
+  CHECK(outcome.splits > 0);
+  CHECK_FALSE(outcome.bounded);
+  REQUIRE(x.size() == h.restPoints().size());
+  std::vector<uint32_t> leaf_of;
+  const auto triangles = h.triangles(&leaf_of);
+  checkSurface(h, triangles, leaf_of, base.centre_of_mass_m);
+  double longest_near = 0, far_level = 0;
+  for (uint32_t id = 0; id < h.nodes().size(); ++id) {
+    if (!h.isLeaf(id)) continue;
+    const auto& c = h.nodes()[id].corners;
+    const Eigen::Vector3d centre = (x[c[0]] + x[c[1]] + x[c[2]]) / 3.0;
+    const double longest =
+        std::max({(x[c[0]] - x[c[1]]).norm(), (x[c[1]] - x[c[2]]).norm(), (x[c[2]] - x[c[0]]).norm()});
+    if ((centre - door).norm() < 0.15) longest_near = std::max(longest_near, longest);
+    if ((centre - door).norm() > 3.0)
+      far_level = std::max(far_level, static_cast<double>(h.nodes()[id].level));
+  }
+  WARN("a 0.1 m ball at the door: " << outcome.splits << " splits, 60 -> " << x.size()
+                                    << " points, longest edge near it " << longest_near << " m");
+  CHECK(longest_near <= 0.05);
+  CHECK(far_level == 0);
+  // A bound below what it needs: refused splits are reported and the bound holds.
+  SurfaceHierarchy bounded(base);
+  std::vector<Eigen::Vector3d> y = base.points_m;
+  rule.max_points = 100;
+  const RefinementOutcome stopped = splitNearContacts(bounded, y, {SphereShape{door, 0.1}}, rule);
+  CHECK(stopped.bounded);
+  CHECK(y.size() <= 100);
+  CHECK(bounded.restPoints().size() == y.size());
+}

@@ -14,6 +14,7 @@
 // for the same reason).
 #include <deform/body_settings.hpp>
 #include <deform/body_state.hpp>
+#include <deform/contact_shapes.hpp>
 #include <deform/control_mesh.hpp>
 
 #include <array>
@@ -104,5 +105,36 @@ struct TransferredBody {
 TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy::Mark before,
                              const BodySettings& settings, const BodyState& state,
                              const BodyDescription& description);
+
+}  // namespace deform
+
+namespace deform {
+
+/// When a contact asks for a finer surface (splitNearContacts).
+struct ContactRefinement {
+  /// A leaf near an obstacle splits while its longest edge is above this share of the obstacle's radius of
+  /// curvature where it meets the leaf [1].
+  double edge_per_radius = 0.5;
+  /// ... and above this floor [m] (scene key vehicle.deformation.contact_edge_m).
+  double contact_edge_m = 0.05;
+  /// How near an obstacle must come to a leaf to count [m]: the step's relative travel and a margin.
+  double reach_m = 0.1;
+  std::size_t max_points = 2000;  ///< the bound (scene key vehicle.deformation.max_control_points)
+};
+
+/// What splitNearContacts did.
+struct RefinementOutcome {
+  std::size_t splits = 0;  ///< leaves split (the grading and closure they needed not counted)
+  bool bounded = false;    ///< a split was refused: it would have passed max_points
+};
+
+/// Splits every leaf that one of `shapes` comes within reach of, while its longest edge is longer than the
+/// rule allows for the obstacle's local radius of curvature there, found from the obstacle's surface points
+/// and normals nearest seven points of the leaf (its corners, edge midpoints and centroid): a flat wall has
+/// none (no split), a pole its radius, a box's edge or another car's corner next to none (split to the
+/// floor). `positions_m` are the points where the body has them now (vehicle frame, as the shapes); the
+/// points a split adds are appended at their edges' midpoints.
+RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eigen::Vector3d>& positions_m,
+                                    const std::vector<ContactShape>& shapes, const ContactRefinement& rule);
 
 }  // namespace deform
