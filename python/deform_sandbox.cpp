@@ -67,6 +67,9 @@ class Scene {
           run_->model(car).body, simulation.controlRestPoints(id), simulation.deformationSettings(id)));
     }
     const std::vector<Eigen::Vector3d> displacements = simulation.controlDisplacements(id);
+    if (displacements.size() != skins_[car]->skin().controlPointCount())  // refined: weights of its own
+      skins_[car] = std::make_unique<scenes::CarSkin>(run_->model(car).body, simulation.controlRestPoints(id),
+                                                      simulation.deformationSettings(id));
     scenes::SkinObstacles obstacles;
     obstacles.gather(simulation, id, skins_[car]->restBounds(),
                      skins_[car]->displacementBound_m(displacements));

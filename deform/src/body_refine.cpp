@@ -1,5 +1,6 @@
 // A body moved onto a finer control surface (refinement.hpp): its points, masses and velocities by
 // interpolation, its plastic rest shape from the coarse triangles' own rest metric.
+#include <deform/error.hpp>
 #include <deform/masses.hpp>
 #include <deform/refinement.hpp>
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 namespace deform {
@@ -169,6 +171,50 @@ void restoreSpin(const std::vector<uint32_t>& moved, const std::vector<double>& 
   for (uint32_t i : moved) v_mps[i] += omega.cross(x_m[i] - centre);
 }
 
+/// The hierarchy's surface as a control mesh around the core at `core_m`.
+ControlMesh surfaceOf(const SurfaceHierarchy& hierarchy, const Eigen::Vector3d& core_m,
+                      std::vector<uint32_t>* leaf_of) {
+  ControlMesh mesh;
+  mesh.points_m = hierarchy.restPoints();
+  mesh.triangles = hierarchy.triangles(leaf_of);
+  finishControlMesh(mesh);
+  mesh.centre_of_mass_m = core_m;
+  return mesh;
+}
+
+/// The constraints on the finer surface `mesh` with these point masses. A point a region lists by index is
+/// joined by the points of its edges within the region; a point `coarse` has keeps its deviation cap, a new
+/// one takes the tighter of its edge's. Every choice depends on the surface alone, not on the refinements
+/// that made it.
+BodySettings settingsOn(const SurfaceHierarchy& hierarchy, const ControlMesh& mesh,
+                        const BodySettings& coarse, const BodyDescription& description,
+                        const std::vector<double>& point_mass_kg) {
+  const std::size_t n = mesh.points_m.size();
+  BodyDescription finer = description;
+  for (MaterialRegion& region : finer.regions) {
+    if (region.points.empty()) continue;
+    std::vector<char> member(n, 0);
+    for (uint32_t p : region.points) member[p] = 1;
+    for (std::size_t k = hierarchy.basePointCount(); k < n; ++k) {
+      const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
+      if (member[a] && member[b] && !member[k]) {
+        member[k] = 1;
+        region.points.push_back(static_cast<uint32_t>(k));
+      }
+    }
+  }
+  MassSplit masses;
+  masses.point_mass_kg = point_mass_kg;
+  masses.core_mass_kg = coarse.core_mass_kg;
+  BodySettings s = createBodySettings(mesh, masses, finer);
+  for (std::size_t i = 0; i < coarse.pointCount(); ++i) s.max_deviation_m[i] = coarse.max_deviation_m[i];
+  for (std::size_t k = coarse.pointCount(); k < n; ++k) {
+    const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
+    s.max_deviation_m[k] = std::min(s.max_deviation_m[a], s.max_deviation_m[b]);
+  }
+  return s;
+}
+
 }  // namespace
 
 TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy::Mark before,
@@ -178,21 +224,19 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   if (settings.pointCount() != old_n || state.positions_m.size() != old_n)
     throw std::logic_error("refinement: the body does not match the hierarchy's mark");
 
-  // The finer surface, around the same core.
-  ControlMesh mesh;
-  mesh.points_m = hierarchy.restPoints();
   std::vector<uint32_t> leaf_of;
-  mesh.triangles = hierarchy.triangles(&leaf_of);
-  finishControlMesh(mesh);
-  mesh.centre_of_mass_m = settings.core_m;
+  const ControlMesh mesh = surfaceOf(hierarchy, settings.core_m, &leaf_of);
 
   // Points: each new one at its edge's midpoint, its mass half from each end of the edge (so mass, momentum
   // and centre of mass stay), its share what the tetrahedral fan gives it on the finer surface.
-  const MassSplit fan = distributeMass(mesh, [&] {
-    double total = settings.core_mass_kg;
-    for (double m : settings.mass_kg) total += m;
-    return total;
-  }());
+  // The fan's shares, for the points' mass the body has (a car's points carry its shell, not 3/4 of it).
+  std::vector<double> fan_kg = distributeMass(mesh, 1.0).point_mass_kg;
+  {
+    double fan_sum = 0, points_kg = 0;
+    for (double m : fan_kg) fan_sum += m;
+    for (double m : settings.mass_kg) points_kg += m;
+    for (double& m : fan_kg) m *= points_kg / fan_sum;
+  }
   MassSplit masses;
   masses.core_mass_kg = settings.core_mass_kg;
   masses.point_mass_kg = settings.mass_kg;
@@ -219,7 +263,7 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   // No point the body had gives more than three quarters of its mass: the draws shrink together if one would.
   std::vector<double> draw_kg(n, 0.0);
   for (std::size_t k = n; k-- > old_n;) {
-    draw_kg[k] += fan.point_mass_kg[k];
+    draw_kg[k] += fan_kg[k];
     const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
     draw_kg[a] += 0.5 * draw_kg[k];
     draw_kg[b] += 0.5 * draw_kg[k];
@@ -229,7 +273,7 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
     if (draw_kg[i] > 0.75 * settings.mass_kg[i])
       share = std::min(share, 0.75 * settings.mass_kg[i] / draw_kg[i]);
   for (std::size_t i = 0; i < old_n; ++i) masses.point_mass_kg[i] -= share * draw_kg[i];
-  for (std::size_t k = old_n; k < n; ++k) masses.point_mass_kg[k] = share * fan.point_mass_kg[k];
+  for (std::size_t k = old_n; k < n; ++k) masses.point_mass_kg[k] = share * fan_kg[k];
   std::vector<char> moved(n, 0);
   for (std::size_t k = old_n; k < n; ++k) {
     const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
@@ -240,27 +284,9 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
     moved[k] = moved[a] = moved[b] = 1;
   }
 
-  // Constraints on the finer surface. A point listed by a region by index is joined by the points of its
-  // edges within the region; a new point's deviation cap is the tighter of its edge's.
-  BodyDescription finer = description;
-  for (MaterialRegion& region : finer.regions) {
-    if (region.points.empty()) continue;
-    std::vector<char> member(n, 0);
-    for (uint32_t p : region.points) member[p] = 1;
-    for (std::size_t k = old_n; k < n; ++k) {
-      const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
-      if (member[a] && member[b]) {
-        member[k] = 1;
-        region.points.push_back(static_cast<uint32_t>(k));
-      }
-    }
-  }
-  BodySettings s = createBodySettings(mesh, masses, finer);
-  for (std::size_t i = 0; i < old_n; ++i) s.max_deviation_m[i] = settings.max_deviation_m[i];
-  for (std::size_t k = old_n; k < n; ++k) {
-    const auto [a, b] = hierarchy.parentsOf(static_cast<uint32_t>(k));
-    s.max_deviation_m[k] = std::min(s.max_deviation_m[a], s.max_deviation_m[b]);
-  }
+  const auto built = std::make_shared<const BodySettings>(
+      settingsOn(hierarchy, mesh, settings, description, masses.point_mass_kg));
+  const BodySettings& s = *built;
 
   // Rest lengths: an edge the body had keeps its own; a new one is measured in the coarse triangle it lies
   // in, laid out flat by that triangle's rest lengths now.
@@ -363,7 +389,19 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   out.time_s = state.time_s;
   out.sleep_timer_s = 0;
   out.sleeping = false;
-  return {std::make_shared<const BodySettings>(std::move(s)), std::move(out)};
+  return {built, std::move(out)};
+}
+
+std::shared_ptr<const BodySettings> refinedSettings(const SurfaceHierarchy& hierarchy,
+                                                    const BodySettings& start,
+                                                    const BodyDescription& description,
+                                                    const std::vector<double>& point_mass_kg) {
+  if (point_mass_kg.size() != hierarchy.restPoints().size() ||
+      start.pointCount() != hierarchy.basePointCount())
+    throw InputError("refinement: " + std::to_string(point_mass_kg.size()) + " point masses for " +
+                     std::to_string(hierarchy.restPoints().size()) + " control points");
+  return std::make_shared<const BodySettings>(
+      settingsOn(hierarchy, surfaceOf(hierarchy, start.core_m, nullptr), start, description, point_mass_kg));
 }
 
 }  // namespace deform

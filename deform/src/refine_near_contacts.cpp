@@ -45,9 +45,12 @@ RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eig
     for (uint32_t id = 0; id < nodes; ++id) {
       if (!hierarchy.isLeaf(id)) continue;
       const auto& c = hierarchy.nodes()[id].corners;
-      const Eigen::Vector3d a = positions_m[c[0]], b = positions_m[c[1]], d = positions_m[c[2]];
-      const double longest_m = std::max({(a - b).norm(), (b - d).norm(), (d - a).norm()});
+      // Its size at rest: a patch the crush stretches does not split again for that.
+      const auto& rest = hierarchy.restPoints();
+      const double longest_m = std::max({(rest[c[0]] - rest[c[1]]).norm(), (rest[c[1]] - rest[c[2]]).norm(),
+                                         (rest[c[2]] - rest[c[0]]).norm()});
       if (longest_m <= rule.contact_edge_m) continue;
+      const Eigen::Vector3d a = positions_m[c[0]], b = positions_m[c[1]], d = positions_m[c[2]];
       const Eigen::Vector3d centre = (a + b + d) / 3.0;
       const double size_m = std::max({(a - centre).norm(), (b - centre).norm(), (d - centre).norm()});
       const std::array<Eigen::Vector3d, 7> samples = {

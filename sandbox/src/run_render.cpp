@@ -189,6 +189,19 @@ void RunRenderer::finishFrame(render::Image& image) const {
   renderer_->finishImage(image);
 }
 
+void RunRenderer::rebind(const scenes::SceneRun& run, std::size_t i) {
+  // The car's body was refined (vehicle::DeformationSettings::refine): its render mesh and wheel hubs
+  // follow the finer control points, with weights of their own.
+  const vehicle::Simulation& simulation = run.simulation();
+  const vehicle::CarId id = run.carId(i);
+  const vehicle::DeformationSettings& d = simulation.deformationSettings(id);
+  CarMeshes& car = cars_[i];
+  car.skin = std::make_unique<scenes::CarSkin>(run.model(i).body, simulation.controlRestPoints(id), d);
+  if (!car.hub_rest_m.empty())
+    car.hub_skin = deform::Skin::build(car.hub_rest_m, simulation.controlRestPoints(id),
+                                       deform::SkinOptions{d.alpha, d.k_nearest, 1, d.skin_method});
+}
+
 void RunRenderer::draw(const scenes::SceneRun& run, scenes::StageTimes& times) {
   const vehicle::Simulation& simulation = run.simulation();
   const vehicle::World& world = simulation.world();
@@ -200,6 +213,7 @@ void RunRenderer::draw(const scenes::SceneRun& run, scenes::StageTimes& times) {
   for (std::size_t i = 0; i < cars_.size(); ++i) {
     displacements_of[i] = simulation.controlDisplacements(run.carId(i));
     const std::vector<Eigen::Vector3d>& displacements = displacements_of[i];
+    if (displacements.size() != cars_[i].skin->skin().controlPointCount()) rebind(run, i);
     scenes::CarSkin& skin = *cars_[i].skin;
     // A car out of the camera's view is not embedded this frame (DESIGN.md section 8): its skin catches
     // up, exactly, on the frame it comes into view (it recomputes what moved since its last update).

@@ -45,6 +45,8 @@ class RunRenderer {
   const scenes::CarSkin& skin(std::size_t car) const { return *cars_[car].skin; }
 
  private:
+  /// Car i's skins built again on its control points now (its body was refined).
+  void rebind(const scenes::SceneRun& run, std::size_t i);
   struct CarMeshes {
     render::Renderer::MeshId body = 0;
     std::vector<render::Renderer::MeshId> wheels;

@@ -306,6 +306,10 @@ nlohmann::json SceneRun::summary() const {
     car["surface_max_residual_crush_m"] = surface.max_m;
     car["surface_crush_profile_m"] = profileJson(surface.profile_m);
     car["surface_crush_height_m"] = surface.height_m;
+    const vehicle::Simulation::Refinement refinement = simulation_->refinement(cars_[i].id);
+    car["control_points"] = refinement.control_points;
+    car["refinements"] = refinement.refinements;
+    car["refinement_bounded"] = refinement.bounded;
     car["name"] = scene_.vehicles[i].name;
     const vehicle::Car& chassis = simulation_->world().car(cars_[i].id);
     const Eigen::Vector3d p = chassis.vehiclePose().position_m;

@@ -20,8 +20,8 @@ namespace scenes {
 namespace {
 
 constexpr char kMagic[8] = {'D', 'F', 'M', 'S', 'T', 'A', 'T', 'E'};
-constexpr uint64_t kVersion = 4;  // 2: the crush coupling's obstacle work; 3: the visual coupling's ghost;
-                                  // 4: the energy watch
+constexpr uint64_t kVersion = 5;  // 2: the crush coupling's obstacle work; 3: the visual coupling's ghost;
+                                  // 4: the energy watch; 5: each body's refinement (its splits)
 constexpr std::size_t kHeaderBytes = 32;
 
 uint64_t readU64(std::span<const uint8_t> bytes, std::size_t at) {

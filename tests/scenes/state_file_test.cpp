@@ -182,8 +182,8 @@ TEST_CASE("state files that are truncated, corrupted, newer or foreign are refus
   refused(longer, "corrupted");
 
   std::vector<uint8_t> newer = file;
-  newer[8] = 5;  // the format version, after the 8-byte mark
-  refused(newer, "newer format version (5");
+  newer[8] = 6;  // the format version, after the 8-byte mark
+  refused(newer, "newer format version (6");
 
   refused(std::vector<uint8_t>{'h', 'e', 'l', 'l', 'o'}, "not a sandbox state file");
   refused({}, "not a sandbox state file");

@@ -94,6 +94,7 @@ std::shared_ptr<const CarBuild> buildCar(const deform::VehicleModel& model, cons
   description.regions = placeMaterialMap(deformation.regions, deformation.material, build->bounds_m);
   build->body_settings = std::make_shared<const deform::BodySettings>(
       deform::createBodySettings(build->control_mesh, build->masses, description));
+  build->description = std::move(description);
   return build;
 }
 

@@ -161,10 +161,10 @@ CrashMetrics Simulation::metrics(CarId car) const {
   if (!out.impacted) return out;
   const auto& rest = dc.body_settings->rest_positions_m;  // the control mesh's points
   const auto& now = dc.body->state().positions_m;
-  out.crushed_volume_m3 =
-      dc.build->control_mesh.volume_m3 - deform::enclosedVolume_m3(now, dc.build->control_mesh.triangles);
-  const CrushStations stations =
-      crushStations(dc.build->control_mesh.triangles, rest, now, dc.impact_direction_vehicle);
+  // The body's own surface: a refined body's is finer than the build's, and encloses the same volume.
+  const auto& triangles = dc.body_settings->triangles;
+  out.crushed_volume_m3 = dc.build->control_mesh.volume_m3 - deform::enclosedVolume_m3(now, triangles);
+  const CrushStations stations = crushStations(triangles, rest, now, dc.impact_direction_vehicle);
   for (std::size_t i = 0; i < rest.size(); ++i)
     out.max_dent_m =
         std::max(out.max_dent_m, -(now[i] - rest[i]).dot(dc.impact_direction_vehicle.normalized()));

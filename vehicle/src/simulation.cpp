@@ -30,11 +30,15 @@ void require(bool ok, const char* member, const std::string& rule, double value)
 // east4 against its tree at 250 points -17 % -> +0.8 %. At 60 points the shorter substeps made the pile worse
 // (-11 % -> -46 %), so the coarse levels keep their own (docs/CRASH_CALIBRATION.md, "Two cars, one
 // solve").
-double contactSubstep_s(const DeformationSettings& s) {
+double contactSubstep_s(const DeformationSettings& s, std::size_t control_points) {
   constexpr std::size_t kFinestWithout = 250;
   constexpr double kLongestFine_s = 0.5e-3;
   if (s.longest_contact_substep_s > 0) return s.longest_contact_substep_s;
-  return s.control_points >= kFinestWithout ? kLongestFine_s : HUGE_VAL;
+  return control_points >= kFinestWithout ? kLongestFine_s : HUGE_VAL;
+}
+
+double contactSubstep_s(const DeformationSettings& s) {
+  return contactSubstep_s(s, s.control_points);
 }
 
 double kineticEnergy(const Car& car) {
@@ -106,6 +110,10 @@ void checkDeformationSettings(const DeformationSettings& s) {
           "must be finite and >= 0", s.crush_allowance_m);
   require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
           "must be finite and >= 0", s.inertial_scale);
+  require(std::isfinite(s.contact_edge_m) && s.contact_edge_m > 0, "contact_edge_m", "must be finite and > 0",
+          s.contact_edge_m);
+  require(s.max_control_points >= s.control_points && s.max_control_points <= 100000, "max_control_points",
+          "must be in [control_points, 100000]", static_cast<double>(s.max_control_points));
 }
 
 Simulation::Simulation(const WorldSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}

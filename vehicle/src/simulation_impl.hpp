@@ -12,6 +12,7 @@
 #include <deform/body_settings.hpp>
 #include <deform/body_state.hpp>
 #include <deform/deformable_body.hpp>
+#include <deform/refinement.hpp>
 
 #include <algorithm>
 #include <memory>
@@ -41,6 +42,11 @@ struct DeformableCar {
   std::shared_ptr<const CarBuild> build;
   std::shared_ptr<const deform::BodySettings> body_settings;  ///< build->body_settings
   std::unique_ptr<deform::DeformableBody> body;
+  /// Refinement (DeformationSettings::refine): the body's surface hierarchy, from its first split; how many
+  /// steps split it, and whether the bound refused a split.
+  std::unique_ptr<deform::SurfaceHierarchy> hierarchy;
+  uint64_t refinements = 0;
+  bool refine_bounded = false;
   CrushShapes shapes;               ///< what the car touches at the end of the step (vehicle frame)
   std::vector<EntityRef> touching;  ///< crushable entities in contact or within reach this step
   /// Of those, what the car met this step: in ODE's contacts, or pushing the body's points (the metrics'
@@ -276,6 +282,13 @@ struct Simulation::Impl {
   /// (reads the world only), the body steps (touches nothing but the car), the reaction goes to ODE and
   /// the collision hull follows the dent (writes the world).
   void prepareCar(DeformableCar& dc) const;
+  /// Refinement (DeformationSettings::refine), after prepareCar: splits the body's surface where this
+  /// step's obstacles ask for it and moves the body onto the finer surface (refine_car.cpp).
+  void refineCar(DeformableCar& dc) const;
+  /// The body as `splits` (SurfaceHierarchy::splitOrder) make it from the car's build, with these point
+  /// masses: its settings and the hierarchy (none for no split), at rest, for a restored state.
+  void rebuildRefined(DeformableCar& dc, const std::vector<uint32_t>& splits,
+                      const std::vector<double>& point_mass_kg) const;
   /// Work every force but the body's took from the chassis over ODE's step (the energy account) [J].
   double otherWork_J(const DeformableCar& dc, const Eigen::Vector3d& velocity_before,
                      const Eigen::Vector3d& omega_before) const;

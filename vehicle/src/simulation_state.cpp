@@ -67,6 +67,17 @@ void visitMetrics(Io& io, Metrics& m) {
 
 void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const {
   out.u64(dc.id);
+  // The refined topology first (the body's state is read against it): the splits in their order.
+  const std::vector<uint32_t> no_splits;
+  const std::vector<uint32_t>& splits = dc.hierarchy ? dc.hierarchy->splitOrder() : no_splits;
+  out.u64(splits.size());
+  for (uint32_t node : splits) out.u64(node);
+  // A refined body's masses: they depend on the order its refinements came in.
+  out.u64(splits.empty() ? 0 : dc.body_settings->mass_kg.size());
+  if (!splits.empty())
+    for (double m : dc.body_settings->mass_kg) out.real(m);
+  out.u64(dc.refinements);
+  out.flag(dc.refine_bounded);
   out.blob(deform::saveState(dc.body->state()));
   out.flag(dc.hull_dirty);
   out.u64(static_cast<uint64_t>(dc.quiet_steps));
@@ -99,8 +110,23 @@ void Simulation::Impl::saveCar(StateWriter& out, const DeformableCar& dc) const 
 
 void Simulation::Impl::restoreCar(StateReader& in, DeformableCar& dc) {
   in.expect(in.u64() == dc.id, "deformable car order does not match the scene");
+  const uint64_t split_count = in.u64();
+  in.expect(split_count <= 4 * dc.settings.max_control_points, "refinement splits out of range");
+  std::vector<uint32_t> splits;
+  for (uint64_t k = 0; k < split_count; ++k) {
+    const uint64_t node = in.u64();
+    in.expect(node < UINT32_MAX, "refinement split out of range");
+    splits.push_back(static_cast<uint32_t>(node));
+  }
+  const uint64_t mass_count = in.u64();
+  in.expect(mass_count <= 100000, "refined body's point masses out of range");
+  std::vector<double> masses;
+  for (uint64_t k = 0; k < mass_count; ++k) masses.push_back(in.real());
+  dc.refinements = in.u64();
+  dc.refine_bounded = in.flag();
   const std::span<const uint8_t> body = in.blob();
   try {
+    rebuildRefined(dc, splits, masses);
     dc.body->setState(deform::restoreState(*dc.body_settings, body));
   } catch (const deform::InputError& e) {
     in.fail(std::string("deformable body: ") + e.what());

@@ -211,6 +211,7 @@ void Simulation::step() {
     const auto after_work = Clock::now();
     laps[i].metrics_ms += ms(after_work - c);
     m.prepareCar(dc);
+    m.refineCar(dc);
     laps[i].coupling_ms += ms(Clock::now() - after_work);
   });
 

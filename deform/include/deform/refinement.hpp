@@ -106,6 +106,15 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
                              const BodySettings& settings, const BodyState& state,
                              const BodyDescription& description);
 
+/// The settings of a body on the hierarchy's surface now with these point masses (one per point): what
+/// transferBody built, for a saved refined body (its masses depend on the order its refinements came in,
+/// the rest on the surface alone). `start` is the body at the hierarchy's base. Throws InputError for a
+/// count that does not match.
+std::shared_ptr<const BodySettings> refinedSettings(const SurfaceHierarchy& hierarchy,
+                                                    const BodySettings& start,
+                                                    const BodyDescription& description,
+                                                    const std::vector<double>& point_mass_kg);
+
 }  // namespace deform
 
 namespace deform {
@@ -128,11 +137,11 @@ struct RefinementOutcome {
   bool bounded = false;    ///< a split was refused: it would have passed max_points
 };
 
-/// Splits every leaf that one of `shapes` comes within reach of, while its longest edge is longer than the
-/// rule allows for the obstacle's local radius of curvature there, found from the obstacle's surface points
-/// and normals nearest seven points of the leaf (its corners, edge midpoints and centroid): a flat wall has
-/// none (no split), a pole its radius, a box's edge or another car's corner next to none (split to the
-/// floor). `positions_m` are the points where the body has them now (vehicle frame, as the shapes); the
+/// Splits every leaf that one of `shapes` comes within reach of, while its longest edge at rest is longer
+/// than the rule allows for the obstacle's local radius of curvature there, found from the obstacle's surface
+/// points and normals nearest seven points of the leaf (its corners, edge midpoints and centroid): a flat
+/// wall has none (no split), a pole its radius, a box's edge or another car's corner next to none (split to
+/// the floor). `positions_m` are the points where the body has them now (vehicle frame, as the shapes); the
 /// points a split adds are appended at their edges' midpoints.
 RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eigen::Vector3d>& positions_m,
                                     const std::vector<ContactShape>& shapes, const ContactRefinement& rule);

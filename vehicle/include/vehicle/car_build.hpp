@@ -25,6 +25,7 @@ struct CarBuild {
   double shell_mass_kg = 0;  ///< sum of the point masses [kg]
   deform::Aabb bounds_m;     ///< the model's body mesh [m]
   std::shared_ptr<const deform::BodySettings> body_settings;
+  deform::BodyDescription description;  ///< what body_settings was built with (a refinement builds again)
 };
 
 /// Builds it from `model`'s body (two convex hulls, the mass fan, the constraints): the costly part of

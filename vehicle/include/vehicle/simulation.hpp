@@ -109,6 +109,15 @@ struct DeformationSettings {
   /// every shipped scene's physics): the body wakes on any change of its inertial load above
   /// deform::SolverParams::wake_load_mps2, which a car on its suspension does nearly every step.
   bool skip_when_idle = false;
+  /// Refinement at run time (deform/refinement.hpp): where an obstacle comes within the step's reach of
+  /// the control surface and its surface curves more tightly than the patch it meets (a pole, a box's
+  /// edge, not a flat wall or the ground), the patch splits until its edges are half the obstacle's radius
+  /// of curvature there, and never shorter than contact_edge_m. A refined patch stays refined. Off: the
+  /// start level throughout.
+  bool refine = false;
+  double contact_edge_m = 0.05;  ///< the shortest edge refinement makes [m]; > 0
+  std::size_t max_control_points =
+      2000;  ///< refinement stops at this many control points; the summary says so
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
@@ -121,6 +130,8 @@ void checkDeformationSettings(const DeformationSettings& settings);
 /// (DeformationSettings::longest_contact_substep_s, or its default by the control points); HUGE_VAL for
 /// none (the substeps alone).
 double contactSubstep_s(const DeformationSettings& settings);
+/// The same for a body of `control_points` points (a refined body's, re-derived at each refinement).
+double contactSubstep_s(const DeformationSettings& settings, std::size_t control_points);
 
 /// Energy of a run since the car's first impact [J], in the world frame. Every term is measured on its
 /// own: the whole car's kinetic energy (ODE chassis plus the shell's point masses), the work of every
@@ -270,6 +281,13 @@ class Simulation {
   const deform::DeformableBody& body(CarId car) const;
 
   CrashMetrics metrics(CarId car) const;
+  /// What refinement (DeformationSettings::refine) did to car's body so far.
+  struct Refinement {
+    std::size_t control_points = 0;  ///< now
+    uint64_t refinements = 0;        ///< steps whose contacts split the surface
+    bool bounded = false;            ///< a split was refused at max_control_points
+  };
+  Refinement refinement(CarId car) const;
   /// Steps in which car's body ran deform's solver, and steps it skipped at no solver cost (its body
   /// asleep: nothing touching it, its points at rest, the chassis's load unchanged; the shell is carried
   /// rigidly, which is exactly what the solver would do then). Counted since the simulation was built.
