@@ -111,10 +111,16 @@ std::vector<uint8_t> Simulation::Impl::idleCars() const {
 }
 
 void Simulation::Impl::holdAsleep(DeformableCar& dc, bool idle) const {
+  // Idle (issue 42): nothing within the margin, so the body falls asleep at the end of the first step
+  // whose points are at rest relative to the chassis (deform's quiet test, with no delay), and no change
+  // of load wakes it. Not idle: deform's own sleep, its delay and its wake load.
   deform::SolverParams params = dc.body->params();
-  const double wake_mps2 = idle ? kNeverWake_mps2 : deform::SolverParams{}.wake_load_mps2;
-  if (params.wake_load_mps2 == wake_mps2) return;
+  const deform::SolverParams defaults;
+  const double wake_mps2 = idle ? kNeverWake_mps2 : defaults.wake_load_mps2;
+  const double delay_s = idle ? 0.0 : defaults.sleep_delay_s;
+  if (params.wake_load_mps2 == wake_mps2 && params.sleep_delay_s == delay_s) return;
   params.wake_load_mps2 = wake_mps2;
+  params.sleep_delay_s = delay_s;
   dc.body->setParams(params);
 }
 
