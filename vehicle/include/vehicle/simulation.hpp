@@ -104,12 +104,12 @@ struct DeformationSettings {
   bool anchored_columns = true;
   /// Idle cars cost nothing (DESIGN.md section 8; issue 42): a car with nothing near it (a broad phase
   /// over the bounding boxes of every car's control points and every obstacle, grown by the step's travel)
-  /// whose points are at rest relative to the chassis falls asleep at the end of that step, and stays
-  /// asleep whatever the chassis's accelerations do: the shell is carried rigidly and no solver step runs
-  /// until something comes near. On by default. Off (the behaviour before issue 42, kept for comparison):
-  /// the body falls asleep after deform::SolverParams::sleep_delay_s of quiet and wakes on any change of
-  /// its inertial load above deform::SolverParams::wake_load_mps2, which a car on its suspension does
-  /// nearly every step.
+  /// whose points have been at rest relative to the chassis for four of the damping's time constants
+  /// (0.05 s at the default 80 1/s) falls asleep, and stays asleep whatever the chassis's accelerations
+  /// do: the shell is carried rigidly and no solver step runs until something comes near. On by default. Off
+  /// (the behaviour before issue 42, kept for comparison): the body falls asleep after
+  /// deform::SolverParams::sleep_delay_s of quiet and wakes on any change of its inertial load above
+  /// deform::SolverParams::wake_load_mps2, which a car on its suspension does nearly every step.
   bool skip_when_idle = true;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
