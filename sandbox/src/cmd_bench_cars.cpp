@@ -17,8 +17,16 @@ void registerBenchCarsCommand(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_flag("--quick", *quick, "The same car counts for 1 simulated second (well under a minute)");
   cmd->add_flag(
-      "--skip-when-idle", options->skip_when_idle,
-      "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle)");
+      "--skip-when-idle,!--no-skip-when-idle", options->skip_when_idle,
+      "Cars skip their deformation step while nothing is near (vehicle.deformation.skip_when_idle, "
+      "on by default; --no-skip-when-idle: a body wakes on its chassis's loads, the behaviour before "
+      "issue 42)");
+  cmd->add_option("--cars", options->cars, "Car counts to run, e.g. --cars 100 or --cars 10,100")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--threads", options->threads, "Thread counts to run each car count on, e.g. --threads 2")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--duration", options->duration_s, "Simulated seconds per run")->capture_default_str();
   cmd->add_option(
       "--budget-ms", options->budget_ms,
@@ -27,6 +35,12 @@ void registerBenchCarsCommand(CLI::App& bench) {
   cmd->callback([options, quick] {
     if (!(options->duration_s > 0 && options->duration_s <= 1e4))
       throw deform::InputError("--duration: must be in (0, 10000] s");
+    if (options->cars.empty() || options->threads.empty())
+      throw deform::InputError("--cars, --threads: at least one each");
+    for (const std::size_t cars : options->cars)
+      if (cars < 1 || cars > 10000) throw deform::InputError("--cars: each count must be in [1, 10000]");
+    for (const int threads : options->threads)
+      if (threads < 1 || threads > 256) throw deform::InputError("--threads: each count must be in [1, 256]");
     if (options->budget_ms && !(*options->budget_ms >= 0))
       throw deform::InputError("--budget-ms: must be >= 0");
     CarsBenchOptions run = *options;

@@ -36,10 +36,12 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
   CrashMetrics& mt = dc.metrics;
   const deform::BodyState& s = dc.body->state();
 
-  // Divergence (MuJoCo-style): non-finite or beyond 1e10 anywhere.
+  // Divergence (MuJoCo-style): non-finite or beyond 1e10 anywhere. A body that slept through the step
+  // has the points it had after the step it fell asleep in, which were checked then (here and below).
+  const bool points_moved = !dc.report.asleep;
   auto bad = [](const Eigen::Vector3d& v) { return !v.allFinite() || v.cwiseAbs().maxCoeff() > 1e10; };
   if (!mt.diverged) {
-    for (std::size_t i = 0; i < s.positions_m.size() && mt.diverged_what.empty(); ++i)
+    for (std::size_t i = 0; points_moved && i < s.positions_m.size() && mt.diverged_what.empty(); ++i)
       if (bad(s.positions_m[i])) mt.diverged_what = "control point " + std::to_string(i);
     if (mt.diverged_what.empty() && (bad(car.bodyPose().position_m) || bad(car.velocity_mps())))
       mt.diverged_what = "chassis";
@@ -93,7 +95,8 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
     }
   }
 
-  mt.max_deviation_m = std::max(mt.max_deviation_m, deform::maxDeviation(*dc.body_settings, s));
+  if (points_moved)
+    mt.max_deviation_m = std::max(mt.max_deviation_m, deform::maxDeviation(*dc.body_settings, s));
   deform::Penetration pen;
   for (const auto& shape : dc.shapes.exactShapes())
     for (const auto& x : s.positions_m)

@@ -189,6 +189,12 @@ struct Simulation::Impl {
   std::vector<uint8_t> idleCars() const;
   /// Keeps an idle car's body asleep (DeformationSettings::skip_when_idle), or lets it wake as usual.
   void holdAsleep(DeformableCar& dc, bool idle) const;
+  /// Whether a body holdAsleep holds asleep sleeps through this step (prepared): asleep, and nothing
+  /// to meet, no impulse, no partner (its wake load is never reached).
+  static bool sleepsThrough(const DeformableCar& dc) {
+    return dc.body->state().sleeping && dc.inputs.contacts.empty() && dc.inputs.impulses.empty() &&
+           dc.partners.empty();
+  }
 
   EnergyWatch watch;
   /// Every car's and free obstacle's mechanical energy and booked losses; per car into `per_car_J`
@@ -262,16 +268,22 @@ struct Simulation::Impl {
 
   /// A deformable car's control points now, in the world, as a convex shape.
   ObstacleShape snapshotShape(const DeformableCar& dc) const {
-    const Pose pose = world.car(dc.id).vehiclePose();
     ObstacleShape s;
+    snapshotInto(dc, s);
+    return s;
+  }
+  /// The same into `s` (a convex shape, or one snapshotInto wrote before), keeping its storage.
+  void snapshotInto(const DeformableCar& dc, ObstacleShape& s) const {
+    const Pose pose = world.car(dc.id).vehiclePose();
+    const std::vector<Eigen::Vector3d>& points = dc.body->state().positions_m;
     s.type = ShapeType::Convex;
     s.centre_m.setZero();
-    for (const auto& p : dc.body->state().positions_m) {
-      s.vertices_m.push_back(pose.toWorld(p));
-      s.centre_m += s.vertices_m.back();
+    s.vertices_m.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      s.vertices_m[i] = pose.toWorld(points[i]);
+      s.centre_m += s.vertices_m[i];
     }
     s.centre_m /= static_cast<double>(s.vertices_m.size());
-    return s;
   }
 
   /// The whole car's kinetic energy in the world [J]: the ODE chassis, and in Crush the shell's points

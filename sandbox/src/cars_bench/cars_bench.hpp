@@ -16,7 +16,7 @@ struct CarsBenchOptions {
   double duration_s = 5.0;   ///< simulated time per run [s]
   double physics_hz = 60.0;  ///< [Hz]
   std::string out_dir = "out/bench_cars";
-  bool skip_when_idle = false;  ///< the cars' vehicle.deformation.skip_when_idle
+  bool skip_when_idle = true;  ///< the cars' vehicle.deformation.skip_when_idle
   /// --budget-ms: the scenes' deformation_budget_ms (a level per car, scenes/deformation_budget.hpp).
   std::optional<double> budget_ms;
 };

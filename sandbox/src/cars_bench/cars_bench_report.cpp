@@ -59,7 +59,7 @@ void writePlot(const std::string& dir, const std::vector<CarsBenchRow>& rows, co
   gp << "set terminal pngcairo size 1200,760 font 'DejaVu Sans,11' noenhanced\n"
      << "set output " << gnuplotQuoted(dir + "/cars.png") << "\n"
      << "set title 'Cost per simulated second against cars: sedans cruising at 50 km/h, 60 Hz, no obstacle"
-     << (skip_when_idle ? ", idle cars skipped" : "") << "'\n"
+     << (skip_when_idle ? ", idle cars asleep" : ", skip_when_idle off") << "'\n"
      << "set logscale xy\nset grid\nset key bottom right font ',9'\n"
      << "set xlabel 'cars'\nset ylabel 'wall ms per simulated second'\n"
      << "set arrow from graph 0, first 1000 to graph 1, first 1000 nohead dt 3\n"
@@ -102,7 +102,8 @@ void writeCarsBenchReport(const CarsBenchOptions& options, const std::vector<Car
   md << "Built-in sedans (20k vertices, 60 control points) cruising at 50 km/h under speed control, "
      << CsvTable::fixed(options.physics_hz, 0) << " Hz, " << CsvTable::fixed(options.duration_s, 1)
      << " s simulated, no obstacle"
-     << (options.skip_when_idle ? ", idle cars skipped (`skip_when_idle`)" : "")
+     << (options.skip_when_idle ? ", idle cars asleep (`skip_when_idle`, the default)"
+                                : ", `skip_when_idle` false (a body wakes on the chassis's loads)")
      << ". Stages in wall ms per simulated second.\n\n"
      << "| cars | threads | set-up ms | tyres | collide | solve | deform | coupling | metrics | step | x "
         "real "

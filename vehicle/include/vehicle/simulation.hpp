@@ -102,13 +102,15 @@ struct DeformationSettings {
   /// (deform::BodyDescription::anchored_columns); off: spokes along the patch's normal (the older model).
   /// With yield_limited, the wall crash converges in N (docs/CRASH_CALIBRATION.md).
   bool anchored_columns = true;
-  /// Idle cars cost nothing (DESIGN.md section 8): with nothing near the car (a broad phase over the
-  /// bounding boxes of every car's control points and every obstacle, grown by the step's travel) its
-  /// body, once deform has put it to sleep, stays asleep whatever the chassis's accelerations do: the
-  /// shell is carried rigidly and no solver step runs until something comes near. Off (the default, and
-  /// every shipped scene's physics): the body wakes on any change of its inertial load above
+  /// Idle cars cost nothing (DESIGN.md section 8; issue 42): a car with nothing near it (a broad phase
+  /// over the bounding boxes of every car's control points and every obstacle, grown by the step's travel)
+  /// whose points have been at rest relative to the chassis for four of the damping's time constants
+  /// (0.05 s at the default 80 1/s) falls asleep, and stays asleep whatever the chassis's accelerations
+  /// do: the shell is carried rigidly and no solver step runs until something comes near. On by default. Off
+  /// (the behaviour before issue 42, kept for comparison): the body falls asleep after
+  /// deform::SolverParams::sleep_delay_s of quiet and wakes on any change of its inertial load above
   /// deform::SolverParams::wake_load_mps2, which a car on its suspension does nearly every step.
-  bool skip_when_idle = false;
+  bool skip_when_idle = true;
   /// Refinement at run time (deform/refinement.hpp): where an obstacle comes within the step's reach of
   /// the control surface and its surface curves more tightly than the patch it meets (a pole, a box's
   /// edge, not a flat wall or the ground), the patch splits until its edges are half the obstacle's radius
@@ -116,8 +118,8 @@ struct DeformationSettings {
   /// start level throughout.
   bool refine = false;
   double contact_edge_m = 0.05;  ///< the shortest edge refinement makes [m]; > 0
-  std::size_t max_control_points =
-      2000;  ///< refinement stops at this many control points; the summary says so
+  /// Refinement stops at this many control points; the summary says when it did.
+  std::size_t max_control_points = 2000;
 
   /// The calibrated material of the built-in sedan (docs/CRASH_CALIBRATION.md).
   static deform::Material sedanMaterial();
