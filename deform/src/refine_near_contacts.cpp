@@ -49,7 +49,7 @@ RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eig
       const auto& rest = hierarchy.restPoints();
       const double longest_m = std::max({(rest[c[0]] - rest[c[1]]).norm(), (rest[c[1]] - rest[c[2]]).norm(),
                                          (rest[c[2]] - rest[c[0]]).norm()});
-      if (longest_m <= rule.contact_edge_m) continue;
+      if (0.5 * longest_m < rule.contact_edge_m) continue;  // its children would be finer than the floor
       const Eigen::Vector3d a = positions_m[c[0]], b = positions_m[c[1]], d = positions_m[c[2]];
       const Eigen::Vector3d centre = (a + b + d) / 3.0;
       const double size_m = std::max({(a - centre).norm(), (b - centre).norm(), (d - centre).norm()});
@@ -62,7 +62,7 @@ RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eig
         allowed_m = std::min(allowed_m,
                              rule.edge_per_radius * localRadius(shape, samples, 2.0 * size_m + rule.reach_m));
       }
-      if (!(longest_m > std::max(rule.contact_edge_m, allowed_m))) continue;
+      if (!(longest_m > allowed_m)) continue;
       const std::size_t before = hierarchy.restPoints().size();
       if (!hierarchy.split(id, rule.max_points)) {
         outcome.bounded = true;

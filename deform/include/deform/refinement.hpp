@@ -124,7 +124,9 @@ struct ContactRefinement {
   /// A leaf near an obstacle splits while its longest edge is above this share of the obstacle's radius of
   /// curvature where it meets the leaf [1].
   double edge_per_radius = 0.5;
-  /// ... and above this floor [m] (scene key vehicle.deformation.contact_edge_m).
+  /// ... and makes no edge shorter than this floor [m] (scene key vehicle.deformation.contact_edge_m): a
+  /// leaf splits only if its children's edges stay at least this long, so edges near a contact end between
+  /// the floor and twice it.
   double contact_edge_m = 0.05;
   /// How near an obstacle must come to a leaf to count [m]: the step's relative travel and a margin.
   double reach_m = 0.1;
