@@ -25,10 +25,30 @@ uint32_t MaterialField::at(const Eigen::Vector3d& place_m) const {
   return 0;
 }
 
+int MaterialField::uniformOver(const Eigen::Vector3d& low_m, const Eigen::Vector3d& high_m) const {
+  for (std::size_t r = regions_.size(); r-- > 0;) {
+    const auto& box = regions_[r].box_m;
+    if (!box || (high_m.array() < box->min_m.array()).any() || (low_m.array() > box->max_m.array()).any())
+      continue;  // no place of the box's is in this region
+    const bool holds =
+        (low_m.array() >= box->min_m.array()).all() && (high_m.array() <= box->max_m.array()).all();
+    return holds ? static_cast<int>(r + 1) : -1;
+  }
+  return 0;
+}
+
 void MaterialField::addTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                 int hat_corner, MaterialShares& shares) const {
   const double area_m2 = 0.5 * (b - a).cross(c - a).norm();
   if (!(area_m2 > 0)) return;
+  // A triangle wholly in one material needs no samples: its share is its area (a third of it under a
+  // corner's hat). Refinement builds a body's constraints again for every small step of the crush, and the
+  // samples were 40 % of a refined pole_side run.
+  const int uniform = uniformOver(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+  if (uniform >= 0) {
+    shares[static_cast<std::size_t>(uniform)] += hat_corner >= 0 && hat_corner <= 2 ? area_m2 / 3.0 : area_m2;
+    return;
+  }
   const double sub_area_m2 = area_m2 / (kSubdivisions * kSubdivisions);
   constexpr double s = 1.0 / kSubdivisions;
   // Sub-triangles of the barycentric grid: (i, j) upright and, where it fits, (i, j) inverted; each

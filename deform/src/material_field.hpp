@@ -29,6 +29,9 @@ class MaterialField {
   void addTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    int hat_corner, MaterialShares& shares) const;
 
+  /// The material of every place in the box from `low_m` to `high_m`, or -1 when the box holds more than one.
+  int uniformOver(const Eigen::Vector3d& low_m, const Eigen::Vector3d& high_m) const;
+
   /// `shares` scaled to sum to 1; all default when they hold no area (a degenerate patch).
   static void normalise(MaterialShares& shares);
   /// The index with the largest share (the first of equal ones).
