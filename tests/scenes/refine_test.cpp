@@ -60,7 +60,7 @@ TEST_CASE("the side pole refined from 60 points dents the door as 2,000 uniform 
   CHECK(coarse.control_points == 60);
   // The coarse body resists with whole patches: its dent is far shallower than the fine one's.
   CHECK(coarse.surface_max_crush_m < 0.5 * fine.surface_max_crush_m);
-  // Within 15 % of the reference (measured +9.5 %: 0.221 against 0.202 m, at 1,543 points; 1,000 uniform
+  // Within 15 % of the reference (measured +11.6 %: 0.225 against 0.202 m, at 1,543 points; 1,000 uniform
   // points give 0.163).
   CHECK(refined.surface_max_crush_m == Approx(fine.surface_max_crush_m).epsilon(0.15));
 }
