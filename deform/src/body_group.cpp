@@ -197,6 +197,8 @@ void BodyGroup::project() {
     const DeformableBody& a = body(link.a);
     const DeformableBody& b = body(link.b);
     corrections_[l].assign(ls.contacts.size(), Eigen::Vector3d::Zero());
+    const double depenetration_m =
+        std::min(a.params_.max_depenetration_mps, b.params_.max_depenetration_mps) * h_s_;
     for (std::size_t n = 0; n < ls.contacts.size(); ++n) {
       const Contact& c = ls.contacts[n];
       const bool point_in_b = c.point_side == 1;
@@ -206,16 +208,20 @@ void BodyGroup::project() {
           placeOf(link, point_in_b, pb.state_.positions_m, c.points, c.point_bary, ls.behind_s);
       const Eigen::Vector3d q =
           placeOf(link, !point_in_b, tb.state_.positions_m, c.corners, c.bary, ls.behind_s);
-      const double violation = c.normal.dot(p - q);
+      const Eigen::Vector3d p_start =
+          placeOf(link, point_in_b, pb.previous_m_, c.points, c.point_bary, ls.start_behind_s);
+      const Eigen::Vector3d q_start =
+          placeOf(link, !point_in_b, tb.previous_m_, c.corners, c.bary, ls.start_behind_s);
+      // A place that began the substep inside the other surface comes out of that depth no faster than
+      // the bodies' max_depenetration_mps, as against an obstacle; motion further in is stopped in full.
+      const double start_gap_m = c.normal.dot(p_start - q_start);
+      const double allowed_m = start_gap_m < 0 ? std::min(0.0, start_gap_m + depenetration_m) : 0.0;
+      const double violation = c.normal.dot(p - q) - allowed_m;
       if (violation >= 0) continue;
       const double denominator = denominatorOf(c, pb, tb);
       if (!(denominator > 0)) continue;
       Eigen::Vector3d correction = (-violation / denominator) * c.normal;  // per unit inverse mass
       if (link.friction > 0) {
-        const Eigen::Vector3d p_start =
-            placeOf(link, point_in_b, pb.previous_m_, c.points, c.point_bary, ls.start_behind_s);
-        const Eigen::Vector3d q_start =
-            placeOf(link, !point_in_b, tb.previous_m_, c.corners, c.bary, ls.start_behind_s);
         // The relative travel over the substep once the normal correction is made.
         const Eigen::Vector3d travel = (p - p_start) - (q - q_start) + denominator * correction;
         const Eigen::Vector3d tangential = travel - c.normal.dot(travel) * c.normal;
