@@ -4,6 +4,7 @@
 #include <deform/error.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -24,10 +25,29 @@ void replaceBody(DeformableCar& dc, std::shared_ptr<const deform::BodySettings> 
   dc.body->setState(std::move(state));
 }
 
+/// Another car's control points in this car's frame, as a convex support shape (its hull): what a partner
+/// asks of this car's surface (bodies stepped as one meet through deform's links, not as shapes).
+struct PointCloud {
+  std::vector<Eigen::Vector3d> points_m;
+  static Eigen::Vector3d support(const void* user, const Eigen::Vector3d& direction) {
+    const auto& points = static_cast<const PointCloud*>(user)->points_m;
+    std::size_t best = 0;
+    double reach = -HUGE_VAL;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double along = points[i].dot(direction);
+      if (along > reach) {
+        reach = along;
+        best = i;
+      }
+    }
+    return points[best];
+  }
+};
+
 }  // namespace
 
 void Simulation::Impl::refineCar(DeformableCar& dc) const {
-  if (!dc.settings.refine || dc.inputs.contacts.empty()) return;
+  if (!dc.settings.refine || (dc.inputs.contacts.empty() && dc.partners.empty())) return;
   if (!dc.hierarchy) dc.hierarchy = std::make_unique<deform::SurfaceHierarchy>(dc.build->control_mesh);
   deform::ContactRefinement rule;
   rule.contact_edge_m = dc.settings.contact_edge_m;
@@ -36,10 +56,34 @@ void Simulation::Impl::refineCar(DeformableCar& dc) const {
   for (const Eigen::Vector3d& v : dc.inputs.contact_velocity_mps)
     fastest_mps = std::max(fastest_mps, v.norm());
   rule.reach_m = fastest_mps * world.fixedDt_s() + kRefineMargin_m;
+  // The partners' surfaces, each where it is now, within the reach of their closing speed.
+  std::vector<deform::ContactShape> shapes = dc.inputs.contacts;
+  std::vector<PointCloud> clouds(dc.partners.size());
+  const Eigen::Quaterniond to_vehicle = dc.frame.orientation.conjugate();
+  const Eigen::Vector3d own_mps = world.car(dc.id).velocity_mps();
+  for (std::size_t k = 0; k < dc.partners.size(); ++k) {
+    const DeformableCar& other = of(dc.partners[k]);
+    PointCloud& cloud = clouds[k];
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : other.world_shape.vertices_m) {
+      cloud.points_m.push_back(to_vehicle * (p - dc.frame.position_m));
+      centre += cloud.points_m.back();
+    }
+    if (cloud.points_m.empty()) continue;
+    deform::ConvexSupportShape hull;
+    hull.support = &PointCloud::support;
+    hull.user = &cloud;
+    hull.centre_m = centre / static_cast<double>(cloud.points_m.size());
+    for (const Eigen::Vector3d& p : cloud.points_m)
+      hull.bounding_radius_m = std::max(hull.bounding_radius_m, (p - hull.centre_m).norm());
+    deform::boundingBox(hull);
+    shapes.push_back(hull);
+    fastest_mps = std::max(fastest_mps, (world.car(dc.partners[k]).velocity_mps() - own_mps).norm());
+  }
+  rule.reach_m = fastest_mps * world.fixedDt_s() + kRefineMargin_m;
   std::vector<Eigen::Vector3d> positions = dc.body->state().positions_m;
   const deform::SurfaceHierarchy::Mark before = dc.hierarchy->mark();
-  const deform::RefinementOutcome outcome =
-      deform::splitNearContacts(*dc.hierarchy, positions, dc.inputs.contacts, rule);
+  const deform::RefinementOutcome outcome = deform::splitNearContacts(*dc.hierarchy, positions, shapes, rule);
   dc.refine_bounded = dc.refine_bounded || outcome.bounded;
   if (outcome.splits == 0) return;
   deform::TransferredBody fine =
