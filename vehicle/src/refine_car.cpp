@@ -70,10 +70,17 @@ void Simulation::Impl::refineCar(DeformableCar& dc) const {
       centre += cloud.points_m.back();
     }
     if (cloud.points_m.empty()) continue;
+    centre /= static_cast<double>(cloud.points_m.size());  // inside the hull: the mean of its points
+    // Only its hull's corners can be a support point: the search runs over those (a refined partner has
+    // thousands of points, and the search ran per query of every leaf near it).
+    try {
+      cloud.points_m = deform::convexHull(cloud.points_m, "partner", deform::FacetSplit::Diagonals).points_m;
+    } catch (const deform::InputError&) {  // a flat or degenerate cloud: every point, as it is
+    }
     deform::ConvexSupportShape hull;
     hull.support = &PointCloud::support;
     hull.user = &cloud;
-    hull.centre_m = centre / static_cast<double>(cloud.points_m.size());
+    hull.centre_m = centre;
     for (const Eigen::Vector3d& p : cloud.points_m)
       hull.bounding_radius_m = std::max(hull.bounding_radius_m, (p - hull.centre_m).norm());
     deform::boundingBox(hull);
