@@ -235,8 +235,6 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   std::vector<uint32_t> leaf_of;
   const ControlMesh mesh = surfaceOf(hierarchy, settings.core_m, &leaf_of);
 
-  // Points: each new one at its edge's midpoint, its mass half from each end of the edge (so mass, momentum
-  // and centre of mass stay), its share what the tetrahedral fan gives it on the finer surface.
   // The fan's shares, for the points' mass the body has (a car's points carry its shell, not 3/4 of it).
   std::vector<double> fan_kg = distributeMass(mesh, 1.0).point_mass_kg;
   {
@@ -245,10 +243,8 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
     for (double m : settings.mass_kg) points_kg += m;
     for (double& m : fan_kg) m *= points_kg / fan_sum;
   }
-  MassSplit masses;
-  masses.core_mass_kg = settings.core_mass_kg;
-  masses.point_mass_kg = settings.mass_kg;
-  masses.point_mass_kg.resize(n, 0.0);
+  std::vector<double> mass_kg = settings.mass_kg;
+  mass_kg.resize(n, 0.0);
   BodyState out;
   out.positions_m = state.positions_m;
   out.velocities_mps = state.velocities_mps;
@@ -310,8 +306,8 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   for (std::size_t i = 0; i < n; ++i) {
     if (!moved[i]) continue;
     const double scale = 1.0 + tilt[0] + tilt.tail<3>().dot(out.positions_m[i] - centre);
-    masses.point_mass_kg[i] = fan_kg[i] * scale;
-    if (!(masses.point_mass_kg[i] > 0))
+    mass_kg[i] = fan_kg[i] * scale;
+    if (!(mass_kg[i] > 0))
       throw std::logic_error("refinement: the fan's masses could not keep the centre of mass");
   }
   // Momentum: the points whose mass changed move together by what they lost.
@@ -320,14 +316,14 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
   for (std::size_t i = 0; i < n; ++i) {
     if (!moved[i]) continue;
     if (i < old_n) lost_Ns += settings.mass_kg[i] * state.velocities_mps[i];
-    lost_Ns -= masses.point_mass_kg[i] * out.velocities_mps[i];
-    moved_kg += masses.point_mass_kg[i];
+    lost_Ns -= mass_kg[i] * out.velocities_mps[i];
+    moved_kg += mass_kg[i];
   }
   for (std::size_t i = 0; i < n; ++i)
     if (moved[i]) out.velocities_mps[i] += lost_Ns / moved_kg;
 
-  const auto built = std::make_shared<const BodySettings>(
-      settingsOn(hierarchy, mesh, settings, description, masses.point_mass_kg));
+  const auto built =
+      std::make_shared<const BodySettings>(settingsOn(hierarchy, mesh, settings, description, mass_kg));
   const BodySettings& s = *built;
 
   // Rest lengths: an edge the body had keeps its own; a new one is measured in the coarse triangle it lies
@@ -438,8 +434,10 @@ std::shared_ptr<const BodySettings> refinedSettings(const SurfaceHierarchy& hier
                                                     const BodySettings& start,
                                                     const BodyDescription& description,
                                                     const std::vector<double>& point_mass_kg) {
-  if (point_mass_kg.size() != hierarchy.restPoints().size() ||
-      start.pointCount() != hierarchy.basePointCount())
+  if (start.pointCount() != hierarchy.basePointCount())
+    throw InputError("refinement: a start body of " + std::to_string(start.pointCount()) +
+                     " control points for a hierarchy over " + std::to_string(hierarchy.basePointCount()));
+  if (point_mass_kg.size() != hierarchy.restPoints().size())
     throw InputError("refinement: " + std::to_string(point_mass_kg.size()) + " point masses for " +
                      std::to_string(hierarchy.restPoints().size()) + " control points");
   return std::make_shared<const BodySettings>(

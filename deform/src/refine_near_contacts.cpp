@@ -64,6 +64,12 @@ RefinementOutcome splitNearContacts(SurfaceHierarchy& hierarchy, std::vector<Eig
       }
       if (!(longest_m > allowed_m)) continue;
       const std::size_t before = hierarchy.restPoints().size();
+      // A leaf has one split edge at most (closure), so its split adds two points at least: past that, no
+      // split can fit, and none is tried (each try is made and undone).
+      if (before + 2 > rule.max_points) {
+        outcome.bounded = true;
+        return outcome;
+      }
       if (!hierarchy.split(id, rule.max_points)) {
         outcome.bounded = true;
         continue;

@@ -120,7 +120,9 @@ TEST_CASE("a split that would pass the point bound changes nothing", "[refine]")
   CHECK_FALSE(h.split(leaf, points));  // a split adds at least one point
   CHECK(h.triangles() == before);
   CHECK(h.restPoints().size() == points);
-  CHECK_FALSE(h.split(0, 100000));  // not a leaf any more, or split already: nothing to do
+  uint32_t inner = 0;
+  while (h.isLeaf(inner)) ++inner;
+  CHECK_FALSE(h.split(inner, 100000));  // split already: nothing to do
   CHECK(h.split(leaf, points + 100));
   CHECK(h.restPoints().size() > points);
 }

@@ -40,7 +40,8 @@ struct DeformableCar {
   DeformationSettings settings;
   /// The shared, immutable part (control mesh, masses, body settings, collision hull).
   std::shared_ptr<const CarBuild> build;
-  std::shared_ptr<const deform::BodySettings> body_settings;  ///< build->body_settings
+  /// build->body_settings, or the car's own once refinement has split its surface.
+  std::shared_ptr<const deform::BodySettings> body_settings;
   std::unique_ptr<deform::DeformableBody> body;
   /// Refinement (DeformationSettings::refine): the body's surface hierarchy, from its first split; how many
   /// steps split it, and whether the bound refused a split.

@@ -96,12 +96,14 @@ struct TransferredBody {
 /// is the one the body was built with: createBodySettings builds the constraints on the finer surface, so
 /// each one's stiffness and yield stand for the skin it now covers. The core (its place and mass) stays.
 /// - A new point starts at the midpoint of its edge's two points, at their mean velocity, its column's
-///   rest place at the mean of theirs; it takes its mass, half from each, so mass, momentum and centre
-///   of mass are unchanged to rounding. The velocities of the new points and their edges' points then
-///   turn together by the one spin that gives back the angular momentum the averaging lost.
+///   rest place at the mean of theirs.
+/// - Every point whose patch changed takes the tetrahedral fan's mass on the finer surface, tilted by the
+///   least linear field that keeps their mass and first moment; their velocities then shift and turn
+///   together to give back the momentum and angular momentum. Mass, centre of mass, momentum and angular
+///   momentum are unchanged to rounding.
 /// - A new edge's rest length is the distance between its ends laid out flat in the coarse triangle it
 ///   lies in, by that triangle's current rest lengths; a new bend's keeps the fold of the coarse hinge it
-///   lies on; a column keeps its plastic strain. A body at rest stays at rest with no elastic energy.
+///   lies on; a spoke keeps its stretch. A body at rest stays at rest with no elastic energy.
 TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy::Mark before,
                              const BodySettings& settings, const BodyState& state,
                              const BodyDescription& description);
@@ -115,17 +117,13 @@ std::shared_ptr<const BodySettings> refinedSettings(const SurfaceHierarchy& hier
                                                     const BodyDescription& description,
                                                     const std::vector<double>& point_mass_kg);
 
-}  // namespace deform
-
-namespace deform {
-
 /// When a contact asks for a finer surface (splitNearContacts).
 struct ContactRefinement {
   /// A leaf near an obstacle splits while its longest edge is above this share of the obstacle's radius of
   /// curvature where it meets the leaf [1].
   double edge_per_radius = 0.5;
-  /// ... and makes no edge shorter than this floor [m] (scene key vehicle.deformation.contact_edge_m): a
-  /// leaf splits only if its children's edges stay at least this long, so edges near a contact end between
+  /// ... and not below this floor [m] (scene key vehicle.deformation.contact_edge_m): a leaf splits only if
+  /// its children's longest edges stay at least this long, so the longest edges near a contact end between
   /// the floor and twice it.
   double contact_edge_m = 0.05;
   /// How near an obstacle must come to a leaf to count [m]: the step's relative travel and a margin.
