@@ -22,6 +22,7 @@ struct StressFlags {
   std::vector<std::string> groups;
   std::optional<std::string> random;  ///< scenes of the random campaign, as typed
   std::optional<std::string> seed;
+  std::optional<std::string> first;  ///< the first scene's index, as typed
 };
 
 void runStress(const StressFlags& flags) {
@@ -47,16 +48,18 @@ void runRandom(const StressFlags& flags) {
     throw deform::InputError("--random: runs random scenes, not the groups (drop --quick and --group)");
   const std::size_t count = wholeNumber("--random", *flags.random, 1);
   const uint64_t seed = flags.seed ? wholeNumber("--seed", *flags.seed, 0) : 1;
+  const std::size_t first = flags.first ? wholeNumber("--first", *flags.first, 0) : 0;
   const std::string out_dir = flags.out_dir.value_or("out/stress_random");
-  std::printf("%zu random crash scenes, seed %llu\n%s\n", count, static_cast<unsigned long long>(seed),
-              randomTableHeader().c_str());
+  std::printf("%zu random crash scenes from scene %zu, seed %llu\n%s\n", count, first,
+              static_cast<unsigned long long>(seed), randomTableHeader().c_str());
   std::fflush(stdout);
   makeRandomOutputFolder(out_dir);
-  const std::vector<RandomOutcome> outcomes = runRandomCampaign(seed, count, [&](const RandomOutcome& o) {
-    std::printf("%s\n", randomTableRow(o).c_str());
-    std::fflush(stdout);
-    writeFailingScene(o, out_dir);
-  });
+  const std::vector<RandomOutcome> outcomes =
+      runRandomCampaign(seed, first, count, [&](const RandomOutcome& o) {
+        std::printf("%s\n", randomTableRow(o).c_str());
+        std::fflush(stdout);
+        writeFailingScene(o, out_dir);
+      });
   writeRandomCsv(outcomes, out_dir);
   std::size_t failed = 0;
   for (const RandomOutcome& o : outcomes) failed += o.passed ? 0 : 1;
@@ -84,12 +87,16 @@ void registerStressCommand(CLI::App& app) {
                   "Instead: N random crash scenes, each played twice and checked (energy not created, no "
                   "launch past the ballistic bound, finite, no tunnelling, the same hash)");
   cmd->add_option("--seed", flags->seed, "With --random: the seed (a whole number; default 1)");
+  cmd->add_option("--first", flags->first,
+                  "With --random: the index of the first scene (default 0): scenes FIRST .. FIRST+N-1, each "
+                  "the same as in a campaign from 0 (a campaign split across machines, or one scene again)");
   cmd->callback([flags] {
     if (flags->random) {
       runRandom(*flags);
       return;
     }
     if (flags->seed) throw deform::InputError("--seed: only with --random N");
+    if (flags->first) throw deform::InputError("--first: only with --random N");
     runStress(*flags);
   });
 }

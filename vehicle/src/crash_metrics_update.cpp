@@ -1,37 +1,15 @@
 // What a run did to one deformable car (simulation.hpp, CrashMetrics): impact, rebound, crush profile,
 // energy terms, divergence, updated after every step.
+#include "segment_meets.hpp"
 #include "simulation_impl.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace vehicle {
-namespace {
 
-/// Whether the segment `from`-`to` passes through the inside of a box or an upright cylinder or capsule
-/// (2 cm samples; the segment is a car's centre of mass over a crash, up to a few metres).
-bool segmentMeets(const ObstacleShape& shape, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  const double length = (to - from).norm();
-  const int samples = std::clamp(static_cast<int>(std::ceil(length / 0.02)), 1, 5000);
-  for (int k = 0; k <= samples; ++k) {
-    const Eigen::Vector3d p = from + (to - from) * (static_cast<double>(k) / samples);
-    if (shape.type == ShapeType::Box) {
-      const Eigen::Vector3d local = shape.axes.transpose() * (p - shape.centre_m);
-      if ((local.cwiseAbs().array() < shape.half_extents_m.array()).all()) return true;
-    } else if (shape.type == ShapeType::Cylinder || shape.type == ShapeType::Capsule) {
-      const Eigen::Vector3d ab = shape.b_m - shape.a_m;
-      const double t = ab.squaredNorm() > 0 ? (p - shape.a_m).dot(ab) / ab.squaredNorm() : 0.0;
-      if (t < 0 || t > 1) continue;
-      if ((p - shape.a_m - t * ab).norm() < shape.radius_m) return true;
-    }
-  }
-  return false;
-}
-
-}  // namespace
-
-void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before,
-                                     double kinetic_before) {
+void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& position_before,
+                                     const Eigen::Vector3d& velocity_before, double kinetic_before) {
   const Car& car = world.car(dc.id);
   CrashMetrics& mt = dc.metrics;
   const deform::BodyState& s = dc.body->state();
@@ -131,14 +109,22 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& v
       mt.max_dynamic_crush_m =
           std::max(mt.max_dynamic_crush_m, (rest[i] - s.positions_m[i]).dot(dc.impact_direction_vehicle));
   }
-  // Tunnelling: the centre of mass went through the wall or post it hit first, on its way from where it
-  // was at impact (a car knocked past another car, driven on over a tree it felled, or scraping along a
-  // barrier past its end has gone beside it, not through it).
-  const bool immovable = dc.impact_other.kind == EntityRef::Kind::Obstacle &&
-                         (world.obstacleKind(dc.impact_other.index) == ObstacleKind::Wall ||
-                          world.obstacleKind(dc.impact_other.index) == ObstacleKind::Post);
-  if (separation < 0 && immovable && !mt.tunnelled)
-    mt.tunnelled = segmentMeets(worldShapeOf(dc.impact_other), dc.impact_com_m, car.bodyPose().position_m);
+  // Tunnelling: the car's origin (inside its rigid parts) passed into or through a wall or post during
+  // this step. The step's own path, not the chord from where the car was at impact: a car that glanced
+  // off a short wall's end and slid along its far face crossed that chord, never the wall (random scene
+  // 10_13). A car knocked past another, or driven on over a tree it felled, meets neither.
+  if (!mt.tunnelled) {
+    const Eigen::Vector3d& to = car.bodyPose().position_m;
+    for (ObstacleId o = 0; o < world.obstacleCount() && !mt.tunnelled; ++o) {
+      const ObstacleKind kind = world.obstacleKind(o);
+      if ((kind != ObstacleKind::Wall && kind != ObstacleKind::Post) || world.obstacleIsDynamic(o)) continue;
+      const ObstacleShape shape = worldShapeOf({EntityRef::Kind::Obstacle, o});
+      const Eigen::Vector3d centre = interiorPoint(shape);
+      const double reach_m = boundingRadius(shape) + (to - position_before).norm();
+      if ((centre - to).squaredNorm() > reach_m * reach_m) continue;
+      mt.tunnelled = segmentMeets(shape, position_before, to);
+    }
+  }
 
   EnergyTerms& e = mt.energy;
   e.crush_work_J += dc.step_crush_work_J;

@@ -326,7 +326,8 @@ struct Simulation::Impl {
   /// One car's coupling and metrics bookkeeping, and its body's state (simulation_state.cpp).
   void saveCar(StateWriter& out, const DeformableCar& dc) const;
   void restoreCar(StateReader& in, DeformableCar& dc);
-  void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& velocity_before, double kinetic_before);
+  void updateMetrics(DeformableCar& dc, const Eigen::Vector3d& position_before,
+                     const Eigen::Vector3d& velocity_before, double kinetic_before);
 };
 
 }  // namespace vehicle

@@ -140,13 +140,14 @@ void Simulation::step() {
   };
   // The crush forces found last step act during this one (on the car, and their reaction on free bodies).
   const std::size_t n = m.cars.size();
-  std::vector<Eigen::Vector3d> velocity_before, omega_before;
+  std::vector<Eigen::Vector3d> position_before, velocity_before, omega_before;
   std::vector<double> kinetic_before;
   m.car_velocity_before.clear();
   for (CarId c = 0; c < m.world.carCount(); ++c)
     m.car_velocity_before.push_back(m.world.car(c).velocity_mps());
   for (auto& dc : m.cars) {
     const Car& car = m.world.car(dc->id);
+    position_before.push_back(car.bodyPose().position_m);
     velocity_before.push_back(car.velocity_mps());
     omega_before.push_back(car.angularVelocity_rad_s());
     kinetic_before.push_back(m.carKineticEnergy(*dc));
@@ -271,7 +272,7 @@ void Simulation::step() {
     DeformableCar& dc = *m.cars[i];
     m.finishCar(dc);
     lap(timings.coupling_ms);
-    m.updateMetrics(dc, velocity_before[i], kinetic_before[i]);
+    m.updateMetrics(dc, position_before[i], velocity_before[i], kinetic_before[i]);
     lap(timings.metrics_ms);
   }
   // From the end of the first step: a scene may start a car's sideways speed by a push in it.

@@ -65,10 +65,10 @@ RandomOutcome runRandomScene(uint64_t seed, std::size_t index) {
   return outcome;
 }
 
-std::vector<RandomOutcome> runRandomCampaign(uint64_t seed, std::size_t count,
+std::vector<RandomOutcome> runRandomCampaign(uint64_t seed, std::size_t first, std::size_t count,
                                              const std::function<void(const RandomOutcome&)>& on_scene) {
   std::vector<RandomOutcome> outcomes;
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = first; i < first + count; ++i) {
     outcomes.push_back(runRandomScene(seed, i));
     if (on_scene) on_scene(outcomes.back());
   }

@@ -29,8 +29,8 @@ struct RandomOutcome {
 /// of the generator), named as such.
 RandomOutcome runRandomScene(uint64_t seed, std::size_t index);
 
-/// Scenes 0 .. count-1 of `seed`, calling `on_scene` after each (for progress).
-std::vector<RandomOutcome> runRandomCampaign(uint64_t seed, std::size_t count,
+/// Scenes first .. first+count-1 of `seed`, calling `on_scene` after each (for progress).
+std::vector<RandomOutcome> runRandomCampaign(uint64_t seed, std::size_t first, std::size_t count,
                                              const std::function<void(const RandomOutcome&)>& on_scene = {});
 
 /// The table's header and one outcome's row, as printed (fixed-width columns).

@@ -210,7 +210,7 @@ struct CrashMetrics {
   double max_deviation_m = 0;  ///< largest |c_i - c_i0| ever [m]
   double max_penetration_m =
       0;                   ///< largest depth of a control point left inside an obstacle after a step [m]
-  bool tunnelled = false;  ///< the centre of mass crossed to the far side of the wall or post it hit first
+  bool tunnelled = false;  ///< the chassis's origin passed into or through a wall or post within a step
   /// A non-finite value or one beyond 1e10 in the car or its body, energy created past the energy
   /// watch's tolerance, or the car rising past its ballistic bound (Simulation::energyWatch).
   bool diverged = false;
