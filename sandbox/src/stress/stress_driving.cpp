@@ -1,5 +1,7 @@
 // The two long stress groups: a long drive ending parked, and the same spot struck again and again.
 #include "resident_memory.hpp"
+
+#include "elapsed.hpp"
 #include "stress/stress_checks.hpp"
 #include "stress/stress_suite.hpp"
 
@@ -13,8 +15,6 @@
 namespace sandbox {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kAddressSanitizer = true;
 #elif defined(__has_feature)
@@ -26,10 +26,6 @@ constexpr bool kAddressSanitizer = false;
 #else
 constexpr bool kAddressSanitizer = false;
 #endif
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // A drive on an empty ground: 50 km/h with a lane change, a stop, then parked with the handbrake for
 // the rest of `steps` 500 Hz steps.
