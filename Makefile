@@ -54,8 +54,12 @@ build-asan: setup-ci
 	  -DCMAKE_CXX_COMPILER=g++ -DDEFORM_SANITIZE=ON -DDEFORM_FUZZ=OFF -DDEFORM_REQUIRE_ALL=ON >/dev/null
 	@cmake --build $(ASAN_DIR) -j $(JOBS)
 
+# Then no test over TEST_BUDGET_S seconds of wall time (tools/test_budget.sh names any that is): no single
+# test may eat CI's headroom.
+TEST_BUDGET_S ?= 60
 test-asan: build-asan
 	@cd $(ASAN_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+	@bash tools/test_budget.sh $(ASAN_DIR) $(TEST_BUDGET_S)
 
 # The libFuzzer targets (clang: libFuzzer and the sanitizers on the code they reach), and only them.
 build-fuzz: setup-ci
