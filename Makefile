@@ -51,16 +51,22 @@ test: build
 # asserts on), run with zero reports allowed.
 build-asan: setup-ci
 	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=gcc \
-	  -DCMAKE_CXX_COMPILER=g++ -DDEFORM_SANITIZE=ON -DDEFORM_FUZZ=OFF -DDEFORM_REQUIRE_ALL=ON >/dev/null
+	  -DCMAKE_CXX_COMPILER=g++ -DDEFORM_SANITIZE=ON -DDEFORM_FUZZ=OFF -DDEFORM_REQUIRE_ALL=ON \
+	  -DDEFORM_UNITY_BUILD=OFF >/dev/null
 	@cmake --build $(ASAN_DIR) -j $(JOBS)
 
+# Then no test over TEST_BUDGET_S seconds of wall time (tools/test_budget.sh names any that is): no single
+# test may eat CI's headroom. 240 s holds the slowest measured on a loaded machine (182 s); issue 43's 60 s
+# does not hold yet (docs/GUIDE.md, "CI jobs").
+TEST_BUDGET_S ?= 240
 test-asan: build-asan
 	@cd $(ASAN_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+	@bash tools/test_budget.sh $(ASAN_DIR) $(TEST_BUDGET_S)
 
 # The libFuzzer targets (clang: libFuzzer and the sanitizers on the code they reach), and only them.
 build-fuzz: setup-ci
 	@cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-	  -DCMAKE_CXX_COMPILER=clang++ -DDEFORM_FUZZ=ON -DDEFORM_REQUIRE_ALL=ON >/dev/null
+	  -DCMAKE_CXX_COMPILER=clang++ -DDEFORM_FUZZ=ON -DDEFORM_REQUIRE_ALL=ON -DDEFORM_UNITY_BUILD=OFF >/dev/null
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_targets
 
 # Every libFuzzer target for FUZZ_SECONDS each (tools/fuzz.sh): no crash, leak, or input over 1 s of CPU.

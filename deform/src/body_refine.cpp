@@ -17,8 +17,6 @@
 namespace deform {
 namespace {
 
-constexpr uint32_t kNone = UINT32_MAX;
-
 uint64_t pairKey(uint32_t a, uint32_t b) {
   return a < b ? (static_cast<uint64_t>(a) << 32) | b : (static_cast<uint64_t>(b) << 32) | a;
 }
@@ -87,11 +85,11 @@ class RestMetric {
     // A leaf was one coarse triangle, or two (green) on either side of the line from its split edge's
     // point to the opposite corner: laid out flat on that line.
     int split_edge = -1;
-    uint32_t m = kNone;
+    uint32_t m = kNoIndex;
     for (int k = 0; k < 3; ++k) {
       const uint32_t mid =
           hierarchy_.midpoint(c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % 3)]);
-      if (mid != kNone && mid < before_.points) {
+      if (mid != kNoIndex && mid < before_.points) {
         split_edge = k;
         m = mid;
       }
@@ -359,7 +357,7 @@ TransferredBody transferBody(const SurfaceHierarchy& hierarchy, SurfaceHierarchy
       const auto [p, q] = pieces.back();
       pieces.pop_back();
       const uint32_t mid = hierarchy.midpoint(p, q);
-      if (mid == kNone) {
+      if (mid == kNoIndex) {
         coarse_bend.emplace(pairKey(p, q), static_cast<uint32_t>(j));
       } else {
         pieces.push_back({p, mid});

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "input_checks.hpp"
 #include "support_wide.hpp"
 
 namespace deform {
@@ -164,14 +165,6 @@ bool inside(const ConvexSupportShape& s, const Eigen::Vector3d& x, double margin
   return true;
 }
 
-void requireFinite(const Eigen::Vector3d& v, const std::string& field) {
-  if (!v.allFinite()) throw InputError(field + ": not finite");
-}
-void requireNonNegative(double value, const std::string& field) {
-  if (!std::isfinite(value) || value < 0)
-    throw InputError(field + ": must be finite and >= 0 (got " + std::to_string(value) + ")");
-}
-
 }  // namespace
 
 bool acrossAxis(const Eigen::Vector3d& normal, const Eigen::Vector3d& axis, Eigen::Vector3d& out) {
@@ -264,33 +257,34 @@ void checkContactShape(const ContactShape& shape, const char* field_name) {
       [&field](const auto& s) {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, HalfSpaceShape>) {
-          requireFinite(s.normal, field + ".normal");
+          detail::requireFinite(s.normal, field + ".normal");
           if (!(s.normal.norm() > 0)) throw InputError(field + ".normal: zero");
           if (!std::isfinite(s.offset_m)) throw InputError(field + ".offset_m: not finite");
         } else if constexpr (std::is_same_v<T, SphereShape>) {
-          requireFinite(s.centre_m, field + ".centre_m");
-          requireNonNegative(s.radius_m, field + ".radius_m");
+          detail::requireFinite(s.centre_m, field + ".centre_m");
+          detail::requireNonNegative(s.radius_m, field + ".radius_m");
         } else if constexpr (std::is_same_v<T, BoxShape>) {
-          requireFinite(s.centre_m, field + ".centre_m");
+          detail::requireFinite(s.centre_m, field + ".centre_m");
           if (!s.axes.allFinite()) throw InputError(field + ".axes: not finite");
-          for (int k = 0; k < 3; ++k) requireNonNegative(s.half_extents_m[k], field + ".half_extents_m");
+          for (int k = 0; k < 3; ++k)
+            detail::requireNonNegative(s.half_extents_m[k], field + ".half_extents_m");
         } else if constexpr (std::is_same_v<T, CapsuleShape>) {
-          requireFinite(s.a_m, field + ".a_m");
-          requireFinite(s.b_m, field + ".b_m");
-          requireNonNegative(s.radius_m, field + ".radius_m");
+          detail::requireFinite(s.a_m, field + ".a_m");
+          detail::requireFinite(s.b_m, field + ".b_m");
+          detail::requireNonNegative(s.radius_m, field + ".radius_m");
         } else if constexpr (std::is_same_v<T, CylinderShape>) {
-          requireFinite(s.a_m, field + ".a_m");
-          requireFinite(s.b_m, field + ".b_m");
-          requireFinite(s.sweep_m, field + ".sweep_m");
-          requireNonNegative(s.radius_m, field + ".radius_m");
+          detail::requireFinite(s.a_m, field + ".a_m");
+          detail::requireFinite(s.b_m, field + ".b_m");
+          detail::requireFinite(s.sweep_m, field + ".sweep_m");
+          detail::requireNonNegative(s.radius_m, field + ".radius_m");
         } else {
           if (!s.support) throw InputError(field + ".support: missing");
-          requireFinite(s.centre_m, field + ".centre_m");
+          detail::requireFinite(s.centre_m, field + ".centre_m");
           if ((s.box_min_m.array() <= s.box_max_m.array()).all()) {
-            requireFinite(s.box_min_m, field + ".box_min_m");
-            requireFinite(s.box_max_m, field + ".box_max_m");
+            detail::requireFinite(s.box_min_m, field + ".box_min_m");
+            detail::requireFinite(s.box_max_m, field + ".box_max_m");
           }
-          requireNonNegative(s.bounding_radius_m, field + ".bounding_radius_m");
+          detail::requireNonNegative(s.bounding_radius_m, field + ".bounding_radius_m");
         }
       },
       shape);

@@ -8,8 +8,6 @@
 namespace deform {
 namespace {
 
-constexpr uint32_t kNone = UINT32_MAX;
-
 uint64_t directed(uint32_t a, uint32_t b) {
   return (static_cast<uint64_t>(a) << 32) | b;
 }
@@ -44,17 +42,17 @@ SurfaceHierarchy::SurfaceHierarchy(const ControlMesh& base)
 
 uint32_t SurfaceHierarchy::midpoint(uint32_t a, uint32_t b) const {
   const auto it = edge_midpoint_.find(undirected(a, b));
-  return it == edge_midpoint_.end() ? kNone : it->second;
+  return it == edge_midpoint_.end() ? kNoIndex : it->second;
 }
 
 uint32_t SurfaceHierarchy::ownerOf(uint32_t a, uint32_t b) const {
   const auto it = edge_owner_.find(directed(a, b));
-  return it == edge_owner_.end() ? kNone : it->second;
+  return it == edge_owner_.end() ? kNoIndex : it->second;
 }
 
 uint32_t SurfaceHierarchy::addMidpoint(uint32_t a, uint32_t b) {
   const uint32_t existing = midpoint(a, b);
-  if (existing != kNone) return existing;
+  if (existing != kNoIndex) return existing;
   const auto p = static_cast<uint32_t>(rest_points_m_.size());
   rest_points_m_.push_back(0.5 * (rest_points_m_[a] + rest_points_m_[b]));
   parents_.push_back({a, b});
@@ -67,7 +65,7 @@ uint32_t SurfaceHierarchy::across(uint32_t node, int k) const {
   const uint32_t a = t.corners[static_cast<std::size_t>(k)],
                  b = t.corners[static_cast<std::size_t>((k + 1) % 3)];
   const uint32_t same = ownerOf(b, a);
-  if (same != kNone) return same;
+  if (same != kNoIndex) return same;
   // The other side is a level coarser: this edge is half of an edge of the parent.
   const Node& parent = nodes_[t.parent];
   for (int j = 0; j < 3; ++j) {
@@ -95,7 +93,7 @@ bool SurfaceHierarchy::split(uint32_t node, std::size_t max_points) {
     const auto [a, b] = parents_[k - base_points_];
     edge_midpoint_.erase(undirected(a, b));
   }
-  for (std::size_t i = splits; i < split_order_.size(); ++i) nodes_[split_order_[i]].first_child = kNone;
+  for (std::size_t i = splits; i < split_order_.size(); ++i) nodes_[split_order_[i]].first_child = kNoIndex;
   nodes_.resize(start.nodes);
   rest_points_m_.resize(start.points);
   parents_.resize(start.points - base_points_);
@@ -122,19 +120,19 @@ bool SurfaceHierarchy::splitGraded(uint32_t node, std::size_t max_points) {
     const auto& t = children[i];
     for (int k = 0; k < 3; ++k)
       edge_owner_[directed(t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)])] = id;
-    nodes_.push_back({t, node, kNone, level});
+    nodes_.push_back({t, node, kNoIndex, level});
   }
   nodes_[node].first_child = first;
   split_order_.push_back(node);
   // Closure: a neighbour of this level left with two or three split edges splits too.
   for (int k = 0; k < 3; ++k) {
     const uint32_t other = ownerOf(c[static_cast<std::size_t>((k + 1) % 3)], c[static_cast<std::size_t>(k)]);
-    if (other == kNone || !isLeaf(other)) continue;
+    if (other == kNoIndex || !isLeaf(other)) continue;
     int split_edges = 0;
     const auto& o = nodes_[other].corners;
     for (int j = 0; j < 3; ++j)
       split_edges +=
-          midpoint(o[static_cast<std::size_t>(j)], o[static_cast<std::size_t>((j + 1) % 3)]) != kNone;
+          midpoint(o[static_cast<std::size_t>(j)], o[static_cast<std::size_t>((j + 1) % 3)]) != kNoIndex;
     if (split_edges >= 2 && !splitGraded(other, max_points)) return false;
   }
   return true;
@@ -156,11 +154,11 @@ std::vector<std::array<uint32_t, 3>> SurfaceHierarchy::triangles(Mark then,
     const Node& t = nodes_[id];
     if (t.first_child < then.nodes) continue;  // split by then
     int split_edge = -1;
-    uint32_t m = kNone;
+    uint32_t m = kNoIndex;
     for (int k = 0; k < 3; ++k) {
       const uint32_t mid =
           midpoint(t.corners[static_cast<std::size_t>(k)], t.corners[static_cast<std::size_t>((k + 1) % 3)]);
-      if (mid == kNone || mid >= then.points) continue;
+      if (mid == kNoIndex || mid >= then.points) continue;
       if (split_edge >= 0) throw std::logic_error("surface hierarchy: a leaf with two split edges");
       split_edge = k;
       m = mid;

@@ -20,6 +20,8 @@
 #include <memory>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 
 namespace sandbox {

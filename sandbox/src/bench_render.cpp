@@ -2,6 +2,8 @@
 // the time of each stage per frame.
 #include "bench_render.hpp"
 
+#include "elapsed.hpp"
+
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -14,6 +16,8 @@
 #include <filesystem>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "frame_writer.hpp"
 #include "render/png_io.hpp"
@@ -24,12 +28,6 @@ namespace fs = std::filesystem;
 
 namespace sandbox {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 void check(const RenderBenchOptions& o) {
   if (o.frames < 1 || o.frames > 100000) throw deform::InputError("--frames: must be in [1, 100000]");

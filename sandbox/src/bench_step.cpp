@@ -18,7 +18,9 @@
 
 #include <scenes/scene_run.hpp>
 
+#include <CLI/CLI.hpp>
 #include "baselines/bullet_peer.hpp"
+
 #include "commands.hpp"
 #include "step_cost.hpp"
 

@@ -3,7 +3,9 @@
 
 #include <memory>
 
+#include <CLI/CLI.hpp>
 #include "cars_bench/cars_bench.hpp"
+
 #include "commands.hpp"
 
 namespace sandbox {

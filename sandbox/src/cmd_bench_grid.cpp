@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "grid/grid_sweep.hpp"
 #include "sweep/sweep_case.hpp"

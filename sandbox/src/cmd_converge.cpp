@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "converge/converge.hpp"
 #include "sweep/sweep_case.hpp"

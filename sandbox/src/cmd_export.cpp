@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "run_command.hpp"
 #include "run_render.hpp"

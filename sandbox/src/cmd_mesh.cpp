@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "mesh_options.hpp"
 #include "mesh_report.hpp"

@@ -13,6 +13,8 @@
 #include <memory>
 #include <optional>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "mesh_options.hpp"
 #include "render/colour_ramp.hpp"

@@ -17,7 +17,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
+#include "elapsed.hpp"
 #include "frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/video_writer.hpp"
@@ -28,12 +31,6 @@ namespace fs = std::filesystem;
 
 namespace sandbox {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // A one-line progress bar on stderr, only on a terminal and only once a run takes more than a moment.
 class ProgressBar {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "stress/random_campaign.hpp"
 #include "stress/stress_sweep.hpp"

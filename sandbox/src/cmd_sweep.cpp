@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "converge/converge.hpp"
 #include "grid/grid_sweep.hpp"

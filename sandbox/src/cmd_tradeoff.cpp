@@ -3,6 +3,8 @@
 #include <memory>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "tradeoff/skin_error_report.hpp"
 #include "tradeoff/tradeoff.hpp"

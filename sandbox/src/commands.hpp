@@ -1,8 +1,12 @@
 #pragma once
-// Each command group registers its subcommands on the program's CLI11 app.
-#include <CLI/CLI.hpp>
-
+// Each command group registers its subcommands on the program's CLI11 app. CLI11 is declared here, not
+// included: its header costs 6 s of compiler time in each translation unit (docs/BENCHMARKS.md, "Build
+// time"), and the files that only throw CommandFailure need none of it.
 #include <stdexcept>
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace sandbox {
 

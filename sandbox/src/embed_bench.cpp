@@ -1,5 +1,7 @@
 #include "embed_bench.hpp"
 
+#include "elapsed.hpp"
+
 #include "embed_plain.hpp"
 
 #include <deform/builtin_meshes.hpp>
@@ -18,13 +20,6 @@
 
 namespace sandbox {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 template <class Fn>
 double medianMs(int repetitions, Fn&& fn) {

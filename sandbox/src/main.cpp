@@ -1,4 +1,6 @@
 // sandbox: the command-line program. Exit codes: 0 done, 2 bad input, 1 failure inside.
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 
 #include <deform/error.hpp>

@@ -1,5 +1,7 @@
 #include "mesh_report.hpp"
 
+#include "elapsed.hpp"
+
 #include <deform/control_mesh.hpp>
 #include <deform/masses.hpp>
 #include <deform/skin_checks.hpp>
@@ -12,10 +14,6 @@
 
 namespace sandbox {
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 nlohmann::ordered_json vec(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};

@@ -1,6 +1,8 @@
 // Drawing a scene run: cars (skinned body, wheels on their hubs), obstacles, camera, heat map.
 #include "run_render.hpp"
 
+#include "elapsed.hpp"
+
 #include <deform/control_mesh.hpp>
 
 #include <vehicle/obstacle_shape.hpp>
@@ -15,12 +17,6 @@
 
 namespace sandbox {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 Eigen::Matrix4f matrixOf(const vehicle::Pose& pose) {
   return pose.isometry().matrix().cast<float>();

@@ -1,5 +1,7 @@
 #include "step_cost.hpp"
 
+#include "elapsed.hpp"
+
 #include <deform/deformable_body.hpp>
 
 #include <algorithm>
@@ -15,11 +17,6 @@ double cpuMicroseconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
-}
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 deform::SolverParams paramsOf(const StepCostOptions& options, uint32_t threads) {

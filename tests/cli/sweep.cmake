@@ -23,12 +23,19 @@ cli_test(sweep_plan_tradeoff_two_cars 2 "car_to_car.json: tradeoff measures one 
 # Whole sweeps (each a few tens of seconds here): killed and resumed, refused merges, failures,
 # provenance; the sharded trade-off study against the one-process one.
 add_test(NAME cli.sweep_resume COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_resume.sh ${SANDBOX}
-         ${SWEEP_OUT}/resume)
-add_test(NAME cli.sweep_tradeoff_shards COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh ${SANDBOX}
-         ${SWEEP_OUT}/tradeoff_shards shards)
-# The parallel and Slurm tests compare with the one-process result the shards test made.
-set(TRADEOFF_ONE ONE_PROCESS_DIR=${SWEEP_OUT}/tradeoff_shards/one)
-set_tests_properties(cli.sweep_tradeoff_shards PROPERTIES FIXTURES_SETUP tradeoff_one_process)
+         ${SWEEP_OUT}/resume resume)
+add_test(NAME cli.sweep_refusals COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_resume.sh ${SANDBOX}
+         ${SWEEP_OUT}/resume refusals)
+set_tests_properties(cli.sweep_resume PROPERTIES FIXTURES_SETUP sweep_resumed)
+set_tests_properties(cli.sweep_refusals PROPERTIES FIXTURES_REQUIRED sweep_resumed)
+# The shards, parallel and Slurm tests compare with the one-process result of cli.sweep_tradeoff_one.
+add_test(NAME cli.sweep_tradeoff_one COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh ${SANDBOX}
+         ${SWEEP_OUT}/tradeoff_one one)
+set_tests_properties(cli.sweep_tradeoff_one PROPERTIES FIXTURES_SETUP tradeoff_one_process)
+set(TRADEOFF_ONE ONE_PROCESS_DIR=${SWEEP_OUT}/tradeoff_one/one)
+add_test(NAME cli.sweep_tradeoff_shards COMMAND env ${TRADEOFF_ONE} bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh
+         ${SANDBOX} ${SWEEP_OUT}/tradeoff_shards shards)
+set_tests_properties(cli.sweep_tradeoff_shards PROPERTIES FIXTURES_REQUIRED tradeoff_one_process)
 add_test(NAME cli.sweep_tradeoff_parallel COMMAND env ${TRADEOFF_ONE} bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep_tradeoff.sh
          ${SANDBOX} ${SWEEP_OUT}/tradeoff_parallel parallel)
 set_tests_properties(cli.sweep_tradeoff_parallel PROPERTIES SKIP_RETURN_CODE 77 FIXTURES_REQUIRED tradeoff_one_process)

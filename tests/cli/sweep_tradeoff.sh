@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# sweep_tradeoff.sh SANDBOX WORK [PARALLEL]: `sandbox tradeoff --quick` on a short wall crash in one process,
+# sweep_tradeoff.sh SANDBOX WORK [MODE]: `sandbox tradeoff --quick` on a short wall crash in one process,
 # and the same sweep planned, run in 3 shards (two at once) and merged, give the same tradeoff.csv in every
-# column but the timings (and the Pareto flag, which is decided by them). With PARALLEL=parallel, the
-# shards run through tools/sweep/parallel.sh instead (skipped, exit 77, when GNU parallel is missing).
-# ONE_PROCESS_DIR, when set, is the one-process result made by another test (the same options).
+# column but the timings (and the Pareto flag, which is decided by them). MODE shards (the default) runs the
+# shards itself; parallel runs them through tools/sweep/parallel.sh (skipped, exit 77, when GNU parallel is
+# missing); one only makes the one-process result, in WORK/one, for the other modes' tests (a test of its
+# own, so that `ctest -j` runs it beside others). ONE_PROCESS_DIR, when set, is the one-process result made
+# by another test (the same options).
 set -uo pipefail
 sandbox=$1
 work=$2
@@ -17,6 +19,12 @@ fi
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 
 options=(--quick --scene wall_crash --set duration_s=0.3)
+if [[ $mode == one ]]; then
+  "$sandbox" tradeoff "${options[@]}" --out one > one.log 2>&1 || fail "one-process tradeoff: $(tail -3 one.log)"
+  [[ $(wc -l < one/tradeoff.csv) -eq 17 ]] || fail "one/tradeoff.csv: expected 16 rows"
+  echo "sweep tradeoff (one): the one-process table, 16 rows"
+  exit 0
+fi
 if [[ -n ${ONE_PROCESS_DIR:-} ]]; then  # the one-process result another test made
   ln -s "$ONE_PROCESS_DIR" one
 else

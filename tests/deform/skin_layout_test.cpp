@@ -8,28 +8,14 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "skin_fixtures.hpp"
+
 namespace {
+
+using skin_test::Sedan;
 
 using deform::SkinLayout;
 using deform::SkinMethod;
-
-struct Sedan {
-  deform::VehicleModel car;
-  std::vector<Eigen::Vector3d> control;
-  explicit Sedan(std::size_t vertices, std::size_t points = 60) : car(deform::makeSedan(vertices)) {
-    std::vector<Eigen::Vector3d> p;
-    for (const auto& v : car.body.positions_m) p.push_back(v.cast<double>());
-    control = deform::buildControlMesh(p, points).points_m;
-  }
-  const std::vector<Eigen::Vector3f>& rest() const { return car.body.positions_m; }
-  /// A dent-sized field: up to 12 cm, pointing inwards, varying from point to point.
-  std::vector<Eigen::Vector3d> dent() const {
-    std::vector<Eigen::Vector3d> d(control.size());
-    for (std::size_t i = 0; i < d.size(); ++i)
-      d[i] = -0.1 * control[i].normalized() * (1.0 + 0.2 * std::sin(3.0 * static_cast<double>(i)));
-    return d;
-  }
-};
 
 /// Inverse-distance weights recomputed in double over the skin's own slots (Kenwright 2015, equation 1),
 /// then the vertex moved in double: the reference the float, fixed-point pass is held to.

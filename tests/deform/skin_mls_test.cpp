@@ -11,20 +11,14 @@
 #include <cmath>
 
 #include "point_sets.hpp"
+#include "skin_fixtures.hpp"
 
 namespace {
 
-using deform::SkinMethod;
+using skin_test::largestWeightSumError;
+using skin_test::Sedan;
 
-double largestWeightSumError(const deform::Skin& skin) {
-  double worst = 0;
-  for (std::size_t j = 0; j < skin.vertexCount(); ++j) {
-    double sum = 0;
-    for (std::size_t k = 0; k < skin.influences(); ++k) sum += skin.slotWeight(j, k);
-    worst = std::max(worst, std::abs(sum - 1.0));
-  }
-  return worst;
-}
+using deform::SkinMethod;
 
 bool allFinite(const deform::Skin& skin) {
   for (std::size_t j = 0; j < skin.vertexCount(); ++j)
@@ -32,19 +26,6 @@ bool allFinite(const deform::Skin& skin) {
       if (!std::isfinite(skin.slotWeight(j, k))) return false;
   return true;
 }
-
-struct Sedan {
-  deform::VehicleModel car = deform::makeSedan(20000);
-  std::vector<Eigen::Vector3d> control;
-  Eigen::Vector3d centre_m;
-  Sedan() {
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& p : car.body.positions_m) points.push_back(p.cast<double>());
-    control = deform::buildControlMesh(points, 60).points_m;
-    const deform::Aabb box = deform::boundingBox(car.body);
-    centre_m = 0.5 * (box.min_m + box.max_m);
-  }
-};
 
 }  // namespace
 

@@ -13,22 +13,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "skin_fixtures.hpp"
+
 namespace {
 
-using deform::SkinMethod;
+using skin_test::Sedan;
 
-struct Sedan {
-  deform::VehicleModel car = deform::makeSedan(20000);
-  std::vector<Eigen::Vector3d> control;
-  Eigen::Vector3d centre_m;
-  explicit Sedan(std::size_t points = 60) {
-    std::vector<Eigen::Vector3d> body;
-    for (const auto& p : car.body.positions_m) body.push_back(p.cast<double>());
-    control = deform::buildControlMesh(body, points).points_m;
-    const deform::Aabb box = deform::boundingBox(car.body);
-    centre_m = 0.5 * (box.min_m + box.max_m);
-  }
-};
+using deform::SkinMethod;
 
 deform::Skin spline(const std::vector<Eigen::Vector3f>& vertices, const std::vector<Eigen::Vector3d>& control,
                     deform::SkinLayout layout = deform::SkinLayout::compact) {
@@ -72,7 +63,7 @@ TEST_CASE("spline: 27 lattice nodes on every vertex, weights summing to one", "[
 
 TEST_CASE("spline reproduces a crash-sized affine map of the control points on the sedan", "[skin][spline]") {
   for (const std::size_t points : {60u, 250u}) {
-    Sedan s(points);
+    Sedan s(20000, points);
     const deform::AffineMap map = deform::crashSizedAffineMap(s.centre_m);
     const deform::Skin skin = spline(s.car.body.positions_m, s.control);
     const double error_m =

@@ -5,8 +5,11 @@
 #include <cmath>
 
 #include "point_sets.hpp"
+#include "skin_fixtures.hpp"
 
 namespace {
+
+using skin_test::largestWeightSumError;
 
 std::vector<Eigen::Vector3f> toFloat(const std::vector<Eigen::Vector3d>& points) {
   std::vector<Eigen::Vector3f> out;
@@ -30,16 +33,6 @@ struct Fixture {
     return out;
   }
 };
-
-double largestWeightSumError(const deform::Skin& skin) {
-  double worst = 0;
-  for (std::size_t j = 0; j < skin.vertexCount(); ++j) {
-    double sum = 0;
-    for (std::size_t k = 0; k < skin.influences(); ++k) sum += skin.slotWeight(j, k);
-    worst = std::max(worst, std::abs(sum - 1.0));
-  }
-  return worst;
-}
 
 }  // namespace
 

@@ -11,13 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "scene_helpers.hpp"
+
 namespace {
 
-scenes::SceneConfig scene(const std::string& name, const std::vector<std::string>& sets) {
-  std::vector<scenes::Override> overrides;
-  for (const std::string& s : sets) overrides.push_back(scenes::parseOverride(s));
-  return scenes::loadScene(name, overrides);
-}
+using scene_test::scene;
 
 nlohmann::json withoutTimings(nlohmann::json summary) {
   summary.erase("timing_ms");

@@ -17,16 +17,11 @@
 #include <utility>
 
 using namespace vehicle;
+using crash_test::frontOf;
 using crash_test::kKmh;
 using crash_test::sedan;
 
 namespace {
-
-double frontOf(const Simulation& sim, CarId id) {
-  double front = -1e300;
-  for (const auto& p : sim.controlRestPoints(id)) front = std::max(front, p.x());
-  return front;
-}
 
 struct Crash {
   CrashMetrics metrics;

@@ -10,7 +10,7 @@
 namespace vehicle_test {
 
 /// The built-in sedan (its body mesh at a modest resolution: the chassis only needs its hull).
-inline const deform::VehicleModel& sedan() {
+inline const deform::VehicleModel& drivingSedan() {
   static const deform::VehicleModel model = deform::makeSedan(4000);
   return model;
 }

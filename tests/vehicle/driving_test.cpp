@@ -1,4 +1,5 @@
 // The car drives like a car: acceleration, braking, turning, sitting level and still when parked.
+#include "crash_cars.hpp"
 #include "driving_helpers.hpp"
 
 #include <vehicle/driver_input.hpp>
@@ -11,17 +12,14 @@
 #include <numbers>
 
 using namespace vehicle;
-using vehicle_test::sedan;
+using crash_test::kKmh;
+using vehicle_test::drivingSedan;
 
-namespace {
-
-constexpr double kKmh = 1 / 3.6;
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("sedan accelerates from 0 to 100 km/h in a plausible time", "[vehicle][driving]") {
   World world;
-  Car& car = world.car(world.addCar(sedan()));
+  Car& car = world.car(world.addCar(drivingSedan()));
   DriverInput input;
   input.throttle = 1;
   car.setInput(input);
@@ -40,7 +38,7 @@ TEST_CASE("sedan brakes from 100 km/h close to the mu g bound", "[vehicle][drivi
   World world;
   CarStart start;
   start.speed_mps = 100 * kKmh;
-  Car& car = world.car(world.addCar(sedan(), {}, start));
+  Car& car = world.car(world.addCar(drivingSedan(), {}, start));
   // Settle at speed for a moment (coasting), then stamp on the brake.
   for (int i = 0; i < 100; ++i) world.step();
   const double v0 = car.forwardSpeed_mps();
@@ -65,7 +63,7 @@ TEST_CASE("sedan brakes from 100 km/h close to the mu g bound", "[vehicle][drivi
 
 TEST_CASE("sedan turns with the kinematic radius at low speed", "[vehicle][driving]") {
   World world;
-  Car& car = world.car(world.addCar(sedan()));
+  Car& car = world.car(world.addCar(drivingSedan()));
   SpeedController speed;
   const double steer = 0.2;
   const double dt = world.fixedDt_s();
@@ -96,7 +94,7 @@ TEST_CASE("sedan turns with the kinematic radius at low speed", "[vehicle][drivi
 TEST_CASE("parked sedan sits level on its suspension and does not creep or jitter", "[vehicle][driving]") {
   for (int mode = 0; mode < 3; ++mode) {  // 0: handbrake, 1: foot brake, 2: no input at all
     World world;
-    Car& car = world.car(world.addCar(sedan()));
+    Car& car = world.car(world.addCar(drivingSedan()));
     DriverInput input;
     input.handbrake = mode == 0;
     input.brake = mode == 1 ? 1.0 : 0.0;
@@ -156,7 +154,7 @@ TEST_CASE("a car stopped by its brakes settles and stays put, also on a 10 % slo
                     {100, 20, 1});
       start.position_m = {0, 0, 0.5 / std::cos(slope) + 0.2};
     }
-    Car& car = world.car(world.addCar(sedan(), {}, start));
+    Car& car = world.car(world.addCar(drivingSedan(), {}, start));
     SpeedController speed;
     const double dt = world.fixedDt_s();
     const int second = static_cast<int>(c.rate_hz);
@@ -194,7 +192,7 @@ TEST_CASE("driving figures do not depend on the physics rate", "[vehicle][drivin
     WorldSettings settings;
     settings.physics_rate_hz = rate_hz;
     World world(settings);
-    Car& car = world.car(world.addCar(sedan()));
+    Car& car = world.car(world.addCar(drivingSedan()));
     DriverInput input;
     input.throttle = 1;
     car.setInput(input);
@@ -207,7 +205,7 @@ TEST_CASE("driving figures do not depend on the physics rate", "[vehicle][drivin
     World world(settings);
     CarStart start;
     start.speed_mps = 100 * kKmh;
-    Car& car = world.car(world.addCar(sedan(), {}, start));
+    Car& car = world.car(world.addCar(drivingSedan(), {}, start));
     DriverInput input;
     input.brake = 1;
     car.setInput(input);
@@ -228,7 +226,7 @@ TEST_CASE("wheel state for drawing: rolling, steering, riding", "[vehicle][drivi
   World world;
   CarStart start;
   start.speed_mps = 10;
-  Car& car = world.car(world.addCar(sedan(), {}, start));
+  Car& car = world.car(world.addCar(drivingSedan(), {}, start));
   DriverInput input;
   input.throttle = 0.15;
   input.steering = 0.2;  // 0.12 rad: a 23 m radius, 0.45 g at 10 m/s
@@ -273,7 +271,7 @@ TEST_CASE("coasting and bouncing never create energy", "[vehicle][driving]") {
   CarStart start;
   start.speed_mps = 20;
   start.position_m = {0, 0, 0.3};  // dropped from 30 cm while rolling
-  Car& car = world.car(world.addCar(sedan(), {}, start));
+  Car& car = world.car(world.addCar(drivingSedan(), {}, start));
   auto energy = [&] {
     const Eigen::Vector3d w = car.angularVelocity_rad_s();
     const Eigen::Matrix3d r = car.bodyPose().orientation.toRotationMatrix();
@@ -308,7 +306,7 @@ TEST_CASE("coasting and bouncing never create energy", "[vehicle][driving]") {
 
 TEST_CASE("a long parked run stays put and finite", "[vehicle][driving]") {
   World world;
-  Car& car = world.car(world.addCar(sedan()));
+  Car& car = world.car(world.addCar(drivingSedan()));
   DriverInput input;
   input.handbrake = true;
   car.setInput(input);
@@ -322,9 +320,9 @@ TEST_CASE("from 1 kg to 40 t: scaled settings sit level and drive", "[vehicle][d
   for (double mass : {1.0, 40000.0}) {
     World world;
     VehicleSettings settings;
-    settings.wheels = wheelsFromModel(settings, sedan());
+    settings.wheels = wheelsFromModel(settings, drivingSedan());
     settings = settingsForMass(settings, mass);
-    Car& car = world.car(world.addCar(sedan(), settings));
+    Car& car = world.car(world.addCar(drivingSedan(), settings));
     DriverInput input;
     input.throttle = 0.5;
     car.setInput(input);
@@ -345,7 +343,7 @@ TEST_CASE("coasting slows by drag and rolling resistance only", "[vehicle][drivi
   World world;
   CarStart start;
   start.speed_mps = 100 * kKmh;
-  Car& car = world.car(world.addCar(sedan(), {}, start));
+  Car& car = world.car(world.addCar(drivingSedan(), {}, start));
   const VehicleSettings& s = car.settings();
   // The same deceleration integrated alone: m dv/dt = -1/2 rho C_d A v^2 - C_rr m g.
   double v = start.speed_mps;
@@ -363,7 +361,7 @@ TEST_CASE("coasting slows by drag and rolling resistance only", "[vehicle][drivi
 
 TEST_CASE("reverse gear drives backwards; the handbrake holds against the engine", "[vehicle][driving]") {
   World world;
-  Car& car = world.car(world.addCar(sedan()));
+  Car& car = world.car(world.addCar(drivingSedan()));
   DriverInput input;
   input.throttle = 0.3;
   input.reverse = true;

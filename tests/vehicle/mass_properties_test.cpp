@@ -53,7 +53,7 @@ TEST_CASE("solid properties of a box are exact, anywhere", "[vehicle][mass]") {
 
 TEST_CASE("the sedan's chassis: hull mass properties, wheels from the model", "[vehicle][mass]") {
   World world;
-  const Car& car = world.car(world.addCar(vehicle_test::sedan()));
+  const Car& car = world.car(world.addCar(vehicle_test::drivingSedan()));
   const Eigen::Vector3d com = car.centreOfMass_m();
   const Eigen::Matrix3d inertia = car.inertia_kg_m2();
   std::printf(
@@ -70,7 +70,7 @@ TEST_CASE("the sedan's chassis: hull mass properties, wheels from the model", "[
   CHECK(inertia(2, 2) < 3500);
   CHECK(inertia(0, 0) > 300);
   CHECK(inertia(0, 0) < 900);
-  CHECK(car.wheelSettings().size() == vehicle_test::sedan().wheels.size());
+  CHECK(car.wheelSettings().size() == vehicle_test::drivingSedan().wheels.size());
   CHECK(car.wheelbase_m() == Approx(2.8).epsilon(0.01));
   int driven = 0, steered = 0;
   for (const auto& w : car.wheelSettings()) {
@@ -101,7 +101,7 @@ TEST_CASE("without a mesh: a box chassis with wheels from its bounding box", "[v
 
 TEST_CASE("the collision hull can be replaced (crushed shape) without changing mass", "[vehicle][mass]") {
   World world;
-  Car& car = world.car(world.addCar(vehicle_test::sedan()));
+  Car& car = world.car(world.addCar(vehicle_test::drivingSedan()));
   deform::ControlMesh crushed = car.collisionHull();
   double front = -1e9;
   for (const auto& p : crushed.points_m) front = std::max(front, p.x());

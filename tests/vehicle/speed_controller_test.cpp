@@ -10,7 +10,7 @@ using namespace vehicle;
 
 TEST_CASE("speed controller reaches, holds and stops", "[vehicle][controller]") {
   World world;
-  Car& car = world.car(world.addCar(vehicle_test::sedan()));
+  Car& car = world.car(world.addCar(vehicle_test::drivingSedan()));
   SpeedController controller;
   const double dt = world.fixedDt_s();
   auto drive = [&](double target, double seconds) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 using namespace vehicle;
+using crash_test::frontOf;
 using crash_test::kKmh;
 using crash_test::sedan;
 
@@ -34,12 +35,6 @@ constexpr double kPlasticTolerance = 0.03;
 constexpr double kContactWindow_s = 0.01;
 /// The crashing car's travel before it meets what it hits [s].
 constexpr double kApproach_s = 0.3;
-
-double frontOf(const Simulation& sim, CarId id) {
-  double front = -1e300;
-  for (const auto& p : sim.controlRestPoints(id)) front = std::max(front, p.x());
-  return front;
-}
 
 /// One car's approach and first contact.
 struct Watched {

@@ -1,4 +1,5 @@
 // The world: stepping checks, determinism, and obstacles of every kind.
+#include "crash_cars.hpp"
 #include "driving_helpers.hpp"
 #include "support.hpp"
 
@@ -15,11 +16,10 @@
 #include <numbers>
 
 using namespace vehicle;
-using vehicle_test::sedan;
+using crash_test::kKmh;
+using vehicle_test::drivingSedan;
 
 namespace {
-
-constexpr double kKmh = 1 / 3.6;
 
 /// A scripted drive: throttle, then a turn, then the brake.
 DriverInput scripted(double t) {
@@ -71,10 +71,10 @@ TEST_CASE("fixed steps: advance takes as many steps as the accumulated time hold
 
 TEST_CASE("same inputs give bit-identical states; other inputs do not", "[vehicle][world][determinism]") {
   auto build = [](World& world) {
-    world.addCar(sedan());
+    world.addCar(drivingSedan());
     CarStart other;
     other.position_m = {12, 1.5, 0};
-    world.addCar(sedan(), {}, other);
+    world.addCar(drivingSedan(), {}, other);
     world.addWall(Pose::yawed({30, 0, 1}, 0.2), {0.5, 8, 2});
     world.addVegetation({8, -1.5, 0}, 0.06, 2.5, 15);
     world.addPost({10, 4, 0}, 0.15, 1.5);
@@ -118,7 +118,7 @@ TEST_CASE("a wall stops the car; contacts name the car and the wall", "[vehicle]
   World world;
   CarStart start;
   start.speed_mps = 40 * kKmh;
-  const CarId id = world.addCar(sedan(), {}, start);
+  const CarId id = world.addCar(drivingSedan(), {}, start);
   const ObstacleId wall = world.addWall(Pose::yawed({10, 0, 1}, 0), {0.4, 6, 2});
   bool touched = false;
   for (int i = 0; i < 1500; ++i) {
@@ -149,7 +149,7 @@ TEST_CASE("a car at 500 km/h does not tunnel through a 0.2 m wall", "[vehicle][w
     World world(settings);
     CarStart start;
     start.speed_mps = 500 * kKmh;
-    const CarId id = world.addCar(sedan(), {}, start);
+    const CarId id = world.addCar(drivingSedan(), {}, start);
     world.addWall(Pose::yawed({8, 0, 1}, 0), {0.2, 6, 2});
     for (int i = 0; i < static_cast<int>(rate / 5); ++i) world.step();
     double front = -1e9;
@@ -163,7 +163,7 @@ TEST_CASE("vegetation stands until a car knocks it over", "[vehicle][world][obst
   World world;
   CarStart start;
   start.speed_mps = 30 * kKmh;
-  const CarId id = world.addCar(sedan(), {}, start);
+  const CarId id = world.addCar(drivingSedan(), {}, start);
   const ObstacleId tree = world.addVegetation({10, 0.3, 0}, 0.08, 3.0, 25);
   const ObstacleId untouched = world.addVegetation({10, 8, 0}, 0.08, 3.0, 25);
   CHECK(world.obstacleIsDynamic(tree));
@@ -184,7 +184,7 @@ TEST_CASE("posts: cylinders and capsules stop a car", "[vehicle][world][obstacle
     World world;
     CarStart start;
     start.speed_mps = 20 * kKmh;
-    const CarId id = world.addCar(sedan(), {}, start);
+    const CarId id = world.addCar(drivingSedan(), {}, start);
     const ObstacleId pole = world.addPost({8, 0, 0}, 0.15, 3.0, post);
     const ObstacleShape shape = world.obstacleShape(pole);
     CHECK(shape.type == (post == PostShape::Cylinder ? ShapeType::Cylinder : ShapeType::Capsule));
@@ -199,7 +199,7 @@ TEST_CASE("a one-sided ramp rolls a fast car over", "[vehicle][world][obstacles]
   World world;
   CarStart start;
   start.speed_mps = 70 * kKmh;
-  const CarId id = world.addCar(sedan(), {}, start);
+  const CarId id = world.addCar(drivingSedan(), {}, start);
   // Under the left wheels only: 0.7 m high over 3 m.
   world.addRamp(Pose::yawed({6, 0.8, 0}, 0), 3.0, 1.0, 0.7);
   double max_roll = 0;
@@ -217,10 +217,10 @@ TEST_CASE("a car pushes a parked car; both report the contact", "[vehicle][world
   World world;
   CarStart start;
   start.speed_mps = 30 * kKmh;
-  const CarId moving = world.addCar(sedan(), {}, start);
+  const CarId moving = world.addCar(drivingSedan(), {}, start);
   CarStart parked_start;
   parked_start.position_m = {8, 0, 0};
-  const CarId parked = world.addCar(sedan(), {}, parked_start);
+  const CarId parked = world.addCar(drivingSedan(), {}, parked_start);
   bool touched = false;
   for (int i = 0; i < 1500; ++i) {
     world.step();
@@ -289,7 +289,7 @@ TEST_CASE("far from the origin the car drives exactly as at the origin", "[vehic
     World world;
     CarStart start;
     start.position_m = origin;
-    Car& car = world.car(world.addCar(sedan(), {}, start));
+    Car& car = world.car(world.addCar(drivingSedan(), {}, start));
     for (int i = 0; i < 2000; ++i) {
       car.setInput(scripted(i * world.fixedDt_s()));
       world.step();
@@ -312,7 +312,7 @@ TEST_CASE("a convex mesh from the importer is an obstacle (jersey barrier)", "[v
   World world;
   CarStart start;
   start.speed_mps = 30 * kKmh;
-  const CarId id = world.addCar(sedan(), {}, start);
+  const CarId id = world.addCar(drivingSedan(), {}, start);
   // Turned across the road 10 m ahead, standing on the ground.
   const deform::Aabb box = deform::boundingBox(barrier.body);
   const Eigen::Vector3d middle = 0.5 * (box.min_m + box.max_m);
@@ -360,7 +360,7 @@ TEST_CASE("a car's contacts in its vehicle frame: the wall pushes its nose back"
   CarStart start;
   start.speed_mps = 15 * kKmh;
   start.heading_rad = 0.7;  // the vehicle frame is turned against the world
-  const CarId id = world.addCar(sedan(), {}, start);
+  const CarId id = world.addCar(drivingSedan(), {}, start);
   const Eigen::Vector3d ahead(std::cos(0.7), std::sin(0.7), 0);
   const ObstacleId wall = world.addWall(Pose::yawed(Eigen::Vector3d(0, 0, 1) + 8 * ahead, 0.7), {0.4, 6, 2});
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();

@@ -24,7 +24,6 @@ struct Car::ConvexGeom {
 
 namespace {
 
-constexpr double kGravity_mps2 = 9.81;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 // The steepest face a wheel stands on: within 60 degrees of its suspension axis (the cosine). A steeper
 // face is no road for the tyre (its hull meets it): the ray looks past it. A wheel's ray that met the

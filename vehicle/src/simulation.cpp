@@ -1,6 +1,7 @@
 // A World with deformable cars and the crush coupling (simulation.hpp; DESIGN.md section 5): the API.
 // The step is simulation_step.cpp, one car's deformation crush_coupling.cpp, its metrics
 // crash_metrics_update.cpp, the shared builds car_build.cpp.
+#include "input_checks.hpp"
 #include "simulation_impl.hpp"
 
 #include <deform/error.hpp>
@@ -14,12 +15,9 @@
 namespace vehicle {
 namespace {
 
-std::string field(const char* member) {
-  return std::string("vehicle.deformation.") + member;
-}
-
-void require(bool ok, const char* member, const std::string& rule, double value) {
-  if (!ok) throw deform::InputError(field(member) + ": " + rule + " (got " + std::to_string(value) + ")");
+/// The deformation settings' members are named in messages by their path in a scene file.
+void requireDeformation(bool ok, const char* member, const std::string& rule, double value) {
+  detail::require(ok, std::string("vehicle.deformation.") + member, rule, value);
 }
 
 }  // namespace
@@ -89,31 +87,35 @@ deform::Material DeformationSettings::sedanMaterial() {
 }
 
 void checkDeformationSettings(const DeformationSettings& s) {
-  require(s.control_points >= 4 && s.control_points <= 5000, "control_points", "must be in [4, 5000]",
-          static_cast<double>(s.control_points));
-  require(std::isfinite(s.alpha) && s.alpha > 0, "alpha", "must be finite and positive", s.alpha);
-  require(s.substeps >= 1 && s.substeps <= 1000, "substeps", "must be in [1, 1000]", s.substeps);
-  require(s.iterations >= 1 && s.iterations <= 1000, "iterations", "must be in [1, 1000]", s.iterations);
-  require(std::isfinite(s.max_deviation_m) && s.max_deviation_m > 0, "max_deviation_m",
-          "must be finite and positive", s.max_deviation_m);
+  requireDeformation(s.control_points >= 4 && s.control_points <= 5000, "control_points",
+                     "must be in [4, 5000]", static_cast<double>(s.control_points));
+  requireDeformation(std::isfinite(s.alpha) && s.alpha > 0, "alpha", "must be finite and positive", s.alpha);
+  requireDeformation(s.substeps >= 1 && s.substeps <= 1000, "substeps", "must be in [1, 1000]", s.substeps);
+  requireDeformation(s.iterations >= 1 && s.iterations <= 1000, "iterations", "must be in [1, 1000]",
+                     s.iterations);
+  requireDeformation(std::isfinite(s.max_deviation_m) && s.max_deviation_m > 0, "max_deviation_m",
+                     "must be finite and positive", s.max_deviation_m);
   deform::checkMaterial(s.material, "vehicle.deformation.material");
-  require(std::isfinite(s.shell_mass_fraction) && s.shell_mass_fraction > 0 && s.shell_mass_fraction <= 1,
-          "shell_mass_fraction", "must be in (0, 1]", s.shell_mass_fraction);
-  require(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0", s.damping);
-  require(std::isfinite(s.contact_friction) && s.contact_friction >= 0, "contact_friction",
-          "must be finite and >= 0", s.contact_friction);
-  require(s.max_depenetration_mps > 0, "max_depenetration_mps", "must be > 0 (infinite: no cap)",
-          s.max_depenetration_mps);
-  require(s.longest_contact_substep_s >= 0, "longest_contact_substep_s",
-          "must be >= 0 (0: by the control points)", s.longest_contact_substep_s);
-  require(std::isfinite(s.crush_allowance_m) && s.crush_allowance_m >= 0, "crush_allowance_m",
-          "must be finite and >= 0", s.crush_allowance_m);
-  require(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
-          "must be finite and >= 0", s.inertial_scale);
-  require(std::isfinite(s.contact_edge_m) && s.contact_edge_m > 0, "contact_edge_m", "must be finite and > 0",
-          s.contact_edge_m);
-  require(s.max_control_points >= s.control_points && s.max_control_points <= 100000, "max_control_points",
-          "must be in [control_points, 100000]", static_cast<double>(s.max_control_points));
+  requireDeformation(
+      std::isfinite(s.shell_mass_fraction) && s.shell_mass_fraction > 0 && s.shell_mass_fraction <= 1,
+      "shell_mass_fraction", "must be in (0, 1]", s.shell_mass_fraction);
+  requireDeformation(std::isfinite(s.damping) && s.damping >= 0, "damping", "must be finite and >= 0",
+                     s.damping);
+  requireDeformation(std::isfinite(s.contact_friction) && s.contact_friction >= 0, "contact_friction",
+                     "must be finite and >= 0", s.contact_friction);
+  requireDeformation(s.max_depenetration_mps > 0, "max_depenetration_mps", "must be > 0 (infinite: no cap)",
+                     s.max_depenetration_mps);
+  requireDeformation(s.longest_contact_substep_s >= 0, "longest_contact_substep_s",
+                     "must be >= 0 (0: by the control points)", s.longest_contact_substep_s);
+  requireDeformation(std::isfinite(s.crush_allowance_m) && s.crush_allowance_m >= 0, "crush_allowance_m",
+                     "must be finite and >= 0", s.crush_allowance_m);
+  requireDeformation(std::isfinite(s.inertial_scale) && s.inertial_scale >= 0, "inertial_scale",
+                     "must be finite and >= 0", s.inertial_scale);
+  requireDeformation(std::isfinite(s.contact_edge_m) && s.contact_edge_m > 0, "contact_edge_m",
+                     "must be finite and > 0", s.contact_edge_m);
+  requireDeformation(s.max_control_points >= s.control_points && s.max_control_points <= 100000,
+                     "max_control_points", "must be in [control_points, 100000]",
+                     static_cast<double>(s.max_control_points));
 }
 
 Simulation::Simulation(const WorldSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}

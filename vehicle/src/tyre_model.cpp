@@ -7,7 +7,6 @@
 namespace vehicle {
 namespace {
 
-constexpr double kGravity_mps2 = 9.81;
 constexpr double kBumpStopFactor = 10.0;
 
 /// Force over linear force of the brush model at normalised slip s = |phi| / (3 mu F_z):

@@ -3,6 +3,8 @@
 
 #include <deform/error.hpp>
 
+#include "input_checks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -33,17 +35,6 @@ void assignRoles(std::vector<WheelSettings>& wheels, double total_brake_Nm) {
             ? kFrontBrakeShare * total_brake_Nm / static_cast<double>(std::max<std::size_t>(1, fronts))
             : (1 - kFrontBrakeShare) * total_brake_Nm / static_cast<double>(std::max<std::size_t>(1, rears));
   }
-}
-
-void requirePositive(double value, const std::string& source, const std::string& field) {
-  if (!(std::isfinite(value) && value > 0))
-    throw deform::InputError(source + ": " + field + " must be finite and positive (got " +
-                             std::to_string(value) + ")");
-}
-void requireNonNegative(double value, const std::string& source, const std::string& field) {
-  if (!(std::isfinite(value) && value >= 0))
-    throw deform::InputError(source + ": " + field + " must be finite and not negative (got " +
-                             std::to_string(value) + ")");
 }
 
 // Total brake torque of the default car: four wheels that can each lock at 1 g with load transfer.
@@ -99,7 +90,7 @@ std::vector<WheelSettings> wheelsFromModel(const VehicleSettings& settings,
 }
 
 VehicleSettings settingsForMass(const VehicleSettings& settings, double mass_kg) {
-  requirePositive(mass_kg, "settingsForMass", "mass_kg");
+  detail::requirePositive(mass_kg, "settingsForMass: mass_kg");
   VehicleSettings out = settings;
   const double ratio = mass_kg / settings.mass_kg;
   out.mass_kg = mass_kg;
@@ -118,43 +109,45 @@ VehicleSettings settingsForMass(const VehicleSettings& settings, double mass_kg)
 
 void checkVehicleSettings(const VehicleSettings& s, const char* source_c) {
   const std::string source = source_c ? source_c : "vehicle";
-  requirePositive(s.mass_kg, source, "mass_kg");
+  const std::string where = source + ": ";  // a field's name in messages follows it
+  detail::requirePositive(s.mass_kg, where + "mass_kg");
   if (!s.centre_of_mass_offset_m.allFinite())
     throw deform::InputError(source + ": centre_of_mass_offset_m must be finite");
-  for (int i = 0; i < 3; ++i) requirePositive(s.box_size_m[i], source, "box_size_m");
-  requirePositive(s.tyre.friction_coefficient, source, "tyre.friction_coefficient");
-  requirePositive(s.tyre.longitudinal_stiffness_per_load, source, "tyre.longitudinal_stiffness_per_load");
-  requirePositive(s.tyre.cornering_stiffness_per_load, source, "tyre.cornering_stiffness_per_load");
-  requirePositive(s.tyre.longitudinal_relaxation_m, source, "tyre.longitudinal_relaxation_m");
-  requirePositive(s.tyre.lateral_relaxation_m, source, "tyre.lateral_relaxation_m");
-  requireNonNegative(s.tyre.low_speed_damping_ratio, source, "tyre.low_speed_damping_ratio");
-  requirePositive(s.tyre.low_speed_blend_mps, source, "tyre.low_speed_blend_mps");
-  requireNonNegative(s.tyre.rolling_resistance, source, "tyre.rolling_resistance");
-  requireNonNegative(s.max_steer_rad, source, "max_steer_rad");
+  for (int i = 0; i < 3; ++i) detail::requirePositive(s.box_size_m[i], where + "box_size_m");
+  detail::requirePositive(s.tyre.friction_coefficient, where + "tyre.friction_coefficient");
+  detail::requirePositive(s.tyre.longitudinal_stiffness_per_load,
+                          where + "tyre.longitudinal_stiffness_per_load");
+  detail::requirePositive(s.tyre.cornering_stiffness_per_load, where + "tyre.cornering_stiffness_per_load");
+  detail::requirePositive(s.tyre.longitudinal_relaxation_m, where + "tyre.longitudinal_relaxation_m");
+  detail::requirePositive(s.tyre.lateral_relaxation_m, where + "tyre.lateral_relaxation_m");
+  detail::requireNonNegative(s.tyre.low_speed_damping_ratio, where + "tyre.low_speed_damping_ratio");
+  detail::requirePositive(s.tyre.low_speed_blend_mps, where + "tyre.low_speed_blend_mps");
+  detail::requireNonNegative(s.tyre.rolling_resistance, where + "tyre.rolling_resistance");
+  detail::requireNonNegative(s.max_steer_rad, where + "max_steer_rad");
   if (!(s.max_steer_rad < 1.4))
     throw deform::InputError(source + ": max_steer_rad must be below 1.4 rad (80 deg)");
-  requirePositive(s.steer_rate_rad_s, source, "steer_rate_rad_s");
+  detail::requirePositive(s.steer_rate_rad_s, where + "steer_rate_rad_s");
   if (!(s.ackermann >= 0 && s.ackermann <= 1))
     throw deform::InputError(source + ": ackermann must be in [0, 1]");
-  requireNonNegative(s.engine_torque_Nm, source, "engine_torque_Nm");
-  requirePositive(s.gear_ratio, source, "gear_ratio");
-  requirePositive(s.max_power_W, source, "max_power_W");
-  requireNonNegative(s.handbrake_torque_Nm, source, "handbrake_torque_Nm");
-  requireNonNegative(s.drag_area_m2, source, "drag_area_m2");
-  requireNonNegative(s.air_density_kg_m3, source, "air_density_kg_m3");
-  requireNonNegative(s.body_friction, source, "body_friction");
+  detail::requireNonNegative(s.engine_torque_Nm, where + "engine_torque_Nm");
+  detail::requirePositive(s.gear_ratio, where + "gear_ratio");
+  detail::requirePositive(s.max_power_W, where + "max_power_W");
+  detail::requireNonNegative(s.handbrake_torque_Nm, where + "handbrake_torque_Nm");
+  detail::requireNonNegative(s.drag_area_m2, where + "drag_area_m2");
+  detail::requireNonNegative(s.air_density_kg_m3, where + "air_density_kg_m3");
+  detail::requireNonNegative(s.body_friction, where + "body_friction");
   for (std::size_t i = 0; i < s.wheels.size(); ++i) {
     const auto& w = s.wheels[i];
     const std::string field = "wheels[" + std::to_string(i) + "].";
     if (!w.centre_m.allFinite()) throw deform::InputError(source + ": " + field + "centre_m must be finite");
-    requirePositive(w.radius_m, source, field + "radius_m");
-    requirePositive(w.width_m, source, field + "width_m");
-    requirePositive(w.inertia_kg_m2, source, field + "inertia_kg_m2");
-    requireNonNegative(w.brake_torque_Nm, source, field + "brake_torque_Nm");
-    requirePositive(w.spring_N_per_m, source, field + "spring_N_per_m");
-    requireNonNegative(w.damper_N_s_per_m, source, field + "damper_N_s_per_m");
-    requirePositive(w.suspension_length_m, source, field + "suspension_length_m");
-    requirePositive(w.max_compression_m, source, field + "max_compression_m");
+    detail::requirePositive(w.radius_m, where + field + "radius_m");
+    detail::requirePositive(w.width_m, where + field + "width_m");
+    detail::requirePositive(w.inertia_kg_m2, where + field + "inertia_kg_m2");
+    detail::requireNonNegative(w.brake_torque_Nm, where + field + "brake_torque_Nm");
+    detail::requirePositive(w.spring_N_per_m, where + field + "spring_N_per_m");
+    detail::requireNonNegative(w.damper_N_s_per_m, where + field + "damper_N_s_per_m");
+    detail::requirePositive(w.suspension_length_m, where + field + "suspension_length_m");
+    detail::requirePositive(w.max_compression_m, where + field + "max_compression_m");
   }
   if (!s.wheels.empty() && s.wheels.size() < 3)
     throw deform::InputError(source + ": wheels: a car needs at least 3 (got " +

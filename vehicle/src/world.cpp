@@ -2,6 +2,7 @@
 #include <vehicle/mass_properties.hpp>
 #include <vehicle/world.hpp>
 
+#include "input_checks.hpp"
 #include "ode_support.hpp"
 
 #include <deform/contact_shapes.hpp>
@@ -36,26 +37,6 @@ void installHandlers() {
 
 constexpr uint32_t kCarKind = 0, kObstacleKind = 1;
 constexpr uint32_t kCarCoreKind = 2;  ///< a car's crush backstop geom
-
-std::string fieldMessage(const char* field, const std::string& rule, double value) {
-  return std::string(field) + ": " + rule + " (got " + std::to_string(value) + ")";
-}
-void requirePositive(double value, const char* field) {
-  if (!(std::isfinite(value) && value > 0))
-    throw deform::InputError(fieldMessage(field, "must be finite and positive", value));
-}
-void requireNonNegative(double value, const char* field) {
-  if (!(std::isfinite(value) && value >= 0))
-    throw deform::InputError(fieldMessage(field, "must be finite and not negative", value));
-}
-void requireFinite(const Eigen::Vector3d& v, const char* field) {
-  if (!v.allFinite()) throw deform::InputError(std::string(field) + ": must be finite");
-}
-void requireFinite(const Pose& pose, const char* field) {
-  if (!pose.position_m.allFinite() || !pose.orientation.coeffs().allFinite() ||
-      std::abs(pose.orientation.norm() - 1.0) > 1e-6)
-    throw deform::InputError(std::string(field) + ": must be finite with a unit quaternion");
-}
 
 /// The 12 triangles of an axis-aligned box centred at `centre_m`, outward.
 deform::ControlMesh boxHull(const Eigen::Vector3d& size_m, const Eigen::Vector3d& centre_m) {
@@ -322,7 +303,7 @@ struct World::Impl {
     if (wheels.size() < 3)
       throw deform::InputError("vehicle: wheels: a car needs at least 3 (got " +
                                std::to_string(wheels.size()) + ")");
-    requireFinite(start.position_m, "start.position_m");
+    detail::requireFinite(start.position_m, "start.position_m");
     if (!std::isfinite(start.heading_rad)) throw deform::InputError("start.heading_rad: must be finite");
     if (!std::isfinite(start.speed_mps)) throw deform::InputError("start.speed_mps: must be finite");
     Eigen::Vector3d origin = start.position_m;
@@ -346,16 +327,16 @@ World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
   if (!(std::isfinite(settings.physics_rate_hz) && settings.physics_rate_hz >= 50 &&
         settings.physics_rate_hz <= 20000))
     throw deform::InputError(
-        fieldMessage("physics_rate_hz", "must be between 50 and 20000", settings.physics_rate_hz));
+        detail::fieldMessage("physics_rate_hz", "must be between 50 and 20000", settings.physics_rate_hz));
   if (settings.solver_iterations < 1 || settings.solver_iterations > 1000)
     throw deform::InputError(
-        fieldMessage("solver_iterations", "must be between 1 and 1000", settings.solver_iterations));
-  requireFinite(settings.gravity_mps2, "gravity_mps2");
-  requirePositive(settings.contact_erp, "contact_erp");
-  requireNonNegative(settings.contact_cfm, "contact_cfm");
+        detail::fieldMessage("solver_iterations", "must be between 1 and 1000", settings.solver_iterations));
+  detail::requireFinite(settings.gravity_mps2, "gravity_mps2");
+  detail::requirePositive(settings.contact_erp, "contact_erp");
+  detail::requireNonNegative(settings.contact_cfm, "contact_cfm");
   if (settings.max_contacts_per_pair < 1 || settings.max_contacts_per_pair > 64)
-    throw deform::InputError(
-        fieldMessage("max_contacts_per_pair", "must be between 1 and 64", settings.max_contacts_per_pair));
+    throw deform::InputError(detail::fieldMessage("max_contacts_per_pair", "must be between 1 and 64",
+                                                  settings.max_contacts_per_pair));
   installHandlers();
   dInitODE2(0);
   dAllocateODEDataForThread(dAllocateMaskAll);
@@ -448,7 +429,7 @@ const Car& World::car(CarId id) const {
 
 ObstacleId World::addGround(double height_m, double friction) {
   if (!std::isfinite(height_m)) throw deform::InputError("ground.height_m: must be finite");
-  requireNonNegative(friction, "ground.friction");
+  detail::requireNonNegative(friction, "ground.friction");
   ObstacleEntry entry;
   entry.kind = ObstacleKind::Ground;
   entry.friction = friction;
@@ -460,9 +441,9 @@ ObstacleId World::addGround(double height_m, double friction) {
 }
 
 ObstacleId World::addWall(const Pose& pose, const Eigen::Vector3d& size_m, double friction) {
-  requireFinite(pose, "wall.pose");
-  for (int i = 0; i < 3; ++i) requirePositive(size_m[i], "wall.size_m");
-  requireNonNegative(friction, "wall.friction");
+  detail::requireFinite(pose, "wall.pose");
+  for (int i = 0; i < 3; ++i) detail::requirePositive(size_m[i], "wall.size_m");
+  detail::requireNonNegative(friction, "wall.friction");
   ObstacleEntry entry;
   entry.kind = ObstacleKind::Wall;
   entry.friction = friction;
@@ -475,10 +456,10 @@ ObstacleId World::addWall(const Pose& pose, const Eigen::Vector3d& size_m, doubl
 
 ObstacleId World::addPost(const Eigen::Vector3d& base_m, double radius_m, double height_m, PostShape shape,
                           double friction) {
-  requireFinite(base_m, "post.base_m");
-  requirePositive(radius_m, "post.radius_m");
-  requirePositive(height_m, "post.height_m");
-  requireNonNegative(friction, "post.friction");
+  detail::requireFinite(base_m, "post.base_m");
+  detail::requirePositive(radius_m, "post.radius_m");
+  detail::requirePositive(height_m, "post.height_m");
+  detail::requireNonNegative(friction, "post.friction");
   ObstacleEntry entry;
   entry.kind = ObstacleKind::Post;
   entry.friction = friction;
@@ -503,11 +484,11 @@ ObstacleId World::addPost(const Eigen::Vector3d& base_m, double radius_m, double
 
 ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, double height_m,
                                 double mass_kg, double friction) {
-  requireFinite(base_m, "vegetation.base_m");
-  requirePositive(radius_m, "vegetation.radius_m");
-  requirePositive(height_m, "vegetation.height_m");
-  requirePositive(mass_kg, "vegetation.mass_kg");
-  requireNonNegative(friction, "vegetation.friction");
+  detail::requireFinite(base_m, "vegetation.base_m");
+  detail::requirePositive(radius_m, "vegetation.radius_m");
+  detail::requirePositive(height_m, "vegetation.height_m");
+  detail::requirePositive(mass_kg, "vegetation.mass_kg");
+  detail::requireNonNegative(friction, "vegetation.friction");
   ObstacleEntry entry;
   entry.kind = ObstacleKind::Vegetation;
   entry.friction = friction;
@@ -528,11 +509,11 @@ ObstacleId World::addVegetation(const Eigen::Vector3d& base_m, double radius_m, 
 
 ObstacleId World::addRamp(const Pose& foot, double length_m, double width_m, double height_m,
                           double friction) {
-  requireFinite(foot, "ramp.pose");
-  requirePositive(length_m, "ramp.length_m");
-  requirePositive(width_m, "ramp.width_m");
-  requirePositive(height_m, "ramp.height_m");
-  requireNonNegative(friction, "ramp.friction");
+  detail::requireFinite(foot, "ramp.pose");
+  detail::requirePositive(length_m, "ramp.length_m");
+  detail::requirePositive(width_m, "ramp.width_m");
+  detail::requirePositive(height_m, "ramp.height_m");
+  detail::requireNonNegative(friction, "ramp.friction");
   deform::ControlMesh wedge;
   const double w = 0.5 * width_m;
   // Corners: 0/1 the low edge (left/right), 2/3 the far bottom edge, 4/5 the top edge above it.
@@ -551,9 +532,9 @@ ObstacleId World::addRamp(const Pose& foot, double length_m, double width_m, dou
 }
 
 ObstacleId World::addConvexMesh(const deform::Mesh& mesh, const Pose& pose, double mass_kg, double friction) {
-  requireFinite(pose, "convex_mesh.pose");
-  requireNonNegative(mass_kg, "convex_mesh.mass_kg");
-  requireNonNegative(friction, "convex_mesh.friction");
+  detail::requireFinite(pose, "convex_mesh.pose");
+  detail::requireNonNegative(mass_kg, "convex_mesh.mass_kg");
+  detail::requireNonNegative(friction, "convex_mesh.friction");
   deform::checkMesh(mesh, "convex_mesh");
   std::vector<Eigen::Vector3d> points;
   for (const auto& p : mesh.positions_m) points.push_back(p.cast<double>());
@@ -600,7 +581,7 @@ ObstacleShape World::shapeOf(EntityRef entity) const {
 }
 
 void World::setCrushAllowance(CarId id, double allowance_m) {
-  requireNonNegative(allowance_m, "crush_allowance_m");
+  detail::requireNonNegative(allowance_m, "crush_allowance_m");
   impl_->crush_allowance_m.at(id) = allowance_m;
   impl_->crush_coupled.at(id) = allowance_m > 0;
   impl_->cars.at(id)->setCoreHull(allowance_m, ode::packEntity(kCarCoreKind, id));
@@ -745,7 +726,7 @@ WorldTimings World::lastTimings() const {
 
 int World::advance(double dt_s) {
   if (!(std::isfinite(dt_s) && dt_s > 0))
-    throw deform::InputError(fieldMessage("dt_s", "time step must be finite and positive", dt_s));
+    throw deform::InputError(detail::fieldMessage("dt_s", "time step must be finite and positive", dt_s));
   Impl& m = *impl_;
   const double fixed = fixedDt_s();
   m.accumulator_s += dt_s;

@@ -26,6 +26,9 @@
 
 namespace deform {
 
+/// The index that names nothing: no parent, no children, no midpoint, no owner (UINT32_MAX).
+inline constexpr uint32_t kNoIndex = UINT32_MAX;
+
 /// The red tree over a closed control surface, and the points its splits added.
 class SurfaceHierarchy {
  public:

@@ -1,5 +1,7 @@
 #include "baselines/bullet_soft_body.hpp"
 
+#include "elapsed.hpp"
+
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
@@ -15,8 +17,6 @@
 
 namespace sandbox::baselines {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // A soft-rigid world with a ground plane at z = 0; owns what it creates.
 struct BulletWorld {
@@ -85,10 +85,6 @@ struct BulletWorld {
     return *soft;
   }
 };
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 bool allFinite(const btSoftBody& body) {
   for (int i = 0; i < body.m_nodes.size(); ++i) {

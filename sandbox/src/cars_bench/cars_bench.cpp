@@ -1,6 +1,8 @@
 // `sandbox bench cars`: the runs (cars_bench.hpp).
 #include "cars_bench.hpp"
 
+#include "elapsed.hpp"
+
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -36,7 +38,6 @@ std::string cruisingCarsScene(std::size_t cars, double duration_s, double physic
 }
 
 std::vector<CarsBenchRow> runCarsBench(const CarsBenchOptions& options) {
-  using Clock = std::chrono::steady_clock;
   std::vector<CarsBenchRow> rows;
   for (std::size_t cars : options.cars) {
     const std::string text =

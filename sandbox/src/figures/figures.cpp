@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "dented_car.hpp"
 #include "flat_mesh.hpp"
 #include "image_tiles.hpp"
 #include "render/heat_colours.hpp"
@@ -33,11 +34,6 @@ render::RenderSettings panelSettings(const FigureOptions& o) {
   s.height = o.panel_height;
   s.samples = o.samples;
   return s;
-}
-
-void save(const FigureOptions& o, const std::string& file, const render::Image& image) {
-  std::filesystem::create_directories(o.out_dir);
-  render::writePng((std::filesystem::path(o.out_dir) / file).string(), image.width, image.height, image.rgba);
 }
 
 /// Renders each of `meshes` alone (the others hidden) from the same camera.

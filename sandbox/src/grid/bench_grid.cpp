@@ -1,5 +1,7 @@
 #include "grid/bench_grid.hpp"
 
+#include "elapsed.hpp"
+
 #include "baselines/bullet_soft_body.hpp"
 #include "grid/full_resolution.hpp"
 #include "step_cost.hpp"
@@ -18,12 +20,7 @@
 namespace sandbox {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kMass_kg = 1500;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The balanced solver, one deformation step per 60 Hz frame.
 StepCostOptions frameStep(std::size_t points) {

@@ -1,5 +1,7 @@
 #include "grid/full_resolution.hpp"
 
+#include "elapsed.hpp"
+
 #include <deform/body_settings.hpp>
 #include <deform/control_mesh.hpp>
 #include <deform/masses.hpp>
@@ -10,7 +12,6 @@
 namespace sandbox {
 
 GridRow fullResolutionRow(const deform::Mesh& mesh, double mass_kg, const StepCostOptions& step) {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   deform::ControlMesh surface;
   surface.points_m.reserve(mesh.positions_m.size());

@@ -1,5 +1,7 @@
 #include "stress/random_campaign.hpp"
 
+#include "elapsed.hpp"
+
 #include <scenes/scene_file.hpp>
 #include <scenes/scene_run.hpp>
 
@@ -18,8 +20,6 @@ namespace fs = std::filesystem;
 
 namespace sandbox {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct PlayedRun {
   RunVerdict verdict;

@@ -1,5 +1,7 @@
 #include "stress/random_checks.hpp"
 
+#include "stress/stress_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,11 +10,8 @@
 namespace sandbox {
 namespace {
 
-constexpr double kHuge = 1e10;  // MuJoCo-style divergence bound
-
-bool bounded(const Eigen::Vector3d& v) {
-  return v.allFinite() && v.cwiseAbs().maxCoeff() < kHuge;
-}
+using stress_support::bounded;
+using stress_support::format;
 
 double kinetic_J(const vehicle::Car& car) {
   return 0.5 * car.mass_kg() * car.velocity_mps().squaredNorm();
@@ -28,12 +27,6 @@ bool metricsFinite(const vehicle::CrashMetrics& m) {
         e.kinetic_final_J, e.crush_work_J, e.other_work_J, e.balance_error_J})
     if (!std::isfinite(value)) return false;
   return true;
-}
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char text[160];
-  std::snprintf(text, sizeof text, pattern, a, b, c);
-  return text;
 }
 
 }  // namespace

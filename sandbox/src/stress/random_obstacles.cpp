@@ -1,5 +1,7 @@
 #include "stress/random_obstacles.hpp"
 
+#include "stress/stress_support.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <numbers>
@@ -7,7 +9,8 @@
 namespace sandbox {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
+using stress_support::kDegree;
+
 // The built-in can's radius at mesh_scale 1 (deform/io/builtin_shapes.cpp) [m].
 constexpr double kCanRadius_m = 0.033;
 

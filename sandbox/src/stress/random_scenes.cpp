@@ -1,5 +1,7 @@
 #include "stress/random_scenes.hpp"
 
+#include "stress/stress_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,9 +13,10 @@
 namespace sandbox {
 namespace {
 
+using stress_support::kDegree;
+
 using nlohmann::json;
 
-constexpr double kDegree = std::numbers::pi / 180.0;
 // The built-in sedan's footprint about its vehicle origin (deform/io/builtin_sedan.cpp: 4.8 m long, body
 // 1.8 m wide), a few centimetres grown [m].
 const Eigen::Vector2d kCarHalfSize_m(2.45, 0.95);

@@ -1,5 +1,7 @@
 #include "stress/stress_checks.hpp"
 
+#include "stress/stress_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,11 +9,7 @@
 namespace sandbox {
 namespace {
 
-constexpr double kHuge = 1e10;  // MuJoCo-style divergence bound
-
-bool bounded(const Eigen::Vector3d& v) {
-  return v.allFinite() && v.cwiseAbs().maxCoeff() < kHuge;
-}
+using stress_support::bounded;
 
 }  // namespace
 

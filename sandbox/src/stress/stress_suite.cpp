@@ -2,7 +2,10 @@
 // style overrides) and checks the invariants of DESIGN.md section 7 on what it measured.
 #include "stress/stress_suite.hpp"
 
+#include "elapsed.hpp"
+
 #include "stress/stress_checks.hpp"
+#include "stress/stress_support.hpp"
 
 #include <scenes/car_skin.hpp>
 #include <scenes/scene_file.hpp>
@@ -22,18 +25,12 @@
 namespace sandbox {
 namespace {
 
-using Overrides = std::vector<std::string>;
-using Clock = std::chrono::steady_clock;
+using stress_support::format;
 
+using Overrides = std::vector<std::string>;
 constexpr const char* kRunChecks =
     "finite, < 1e10; no tunnelling; deviation <= cap; measured terms explain no more than the car lost, "
     "body holds no more than what hit it put in; same hash twice; no ODE warning";
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, a, b, c, d);
-  return text;
-}
 
 scenes::SceneConfig wallCrash(const Overrides& overrides) {
   std::vector<scenes::Override> parsed;
@@ -42,10 +39,6 @@ scenes::SceneConfig wallCrash(const Overrides& overrides) {
 }
 
 // Plays `scene` twice; the case holds when both runs pass checkRun and give the same hash.
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 StressCase runCase(const std::string& group, const std::string& name, const scenes::SceneConfig& scene) {
   const auto start = Clock::now();
   StressCase c{group, name, kRunChecks};

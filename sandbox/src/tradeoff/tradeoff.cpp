@@ -1,5 +1,7 @@
 #include "tradeoff/tradeoff.hpp"
 
+#include "elapsed.hpp"
+
 #include "build_version.hpp"
 #include "sweep/sweep_case.hpp"
 
@@ -17,7 +19,6 @@
 namespace sandbox {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kFrameRate_hz = 60.0;  // a game frame: the unit of cost
 constexpr const char* kKnobPath = "vehicle.deformation.";
 

@@ -23,6 +23,10 @@
 
 namespace vehicle {
 
+/// The gravity a car's static wheel loads and a tyre's corner mass are figured with [m/s^2] (not the
+/// world's gravity setting).
+inline constexpr double kGravity_mps2 = 9.81;
+
 /// Tyre force in the wheel's ground plane: x along the wheel's heading, y to its left [N].
 struct TyreForce {
   double longitudinal_N = 0;  ///< + drives the car forward
