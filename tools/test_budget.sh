@@ -10,6 +10,7 @@ budget=${2:-60}
 [[ -s $log ]] || { echo "test budget: no $log (run ctest first)" >&2; exit 2; }
 times=$(awk '/^[0-9]+\/[0-9]+ Test: / { sub(/^[0-9]+\/[0-9]+ Test: /, ""); name = $0 }
              /^Test time = / { printf "%.1f %s\n", $4, name }' "$log" | sort -rn)
+[[ -n $times ]] || { echo "test budget: no test times in $log (has ctest's log format changed?)" >&2; exit 2; }
 echo "test budget: the slowest tests in $1 (budget ${budget} s each):"
 head -5 <<< "$times" | sed 's/^/test budget:   /'
 over=$(awk -v b="$budget" '$1 > b' <<< "$times")

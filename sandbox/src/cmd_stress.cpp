@@ -4,6 +4,7 @@
 #include <deform/error.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -51,6 +52,9 @@ void runRandom(const StressFlags& flags) {
   const std::size_t count = wholeNumber("--random", *flags.random, 1);
   const uint64_t seed = flags.seed ? wholeNumber("--seed", *flags.seed, 0) : 1;
   const std::size_t first = flags.first ? wholeNumber("--first", *flags.first, 0) : 0;
+  if (first > std::numeric_limits<std::size_t>::max() - count)
+    throw deform::InputError("--first: the scenes FIRST .. FIRST+N-1 must have indices below 2^64 (got " +
+                             std::to_string(first) + " and N = " + std::to_string(count) + ")");
   const std::string out_dir = flags.out_dir.value_or("out/stress_random");
   std::printf("%zu random crash scenes from scene %zu, seed %llu\n%s\n", count, first,
               static_cast<unsigned long long>(seed), randomTableHeader().c_str());

@@ -81,6 +81,23 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& p
       if (deform::penetration(shape, x, pen))
         mt.max_penetration_m = std::max(mt.max_penetration_m, pen.depth_m);
 
+  // Tunnelling: the car's origin (inside its rigid parts) passed into or through a wall or post during
+  // this step. The step's own path, not the chord from where the car was at impact: a car that glanced
+  // off a short wall's end and slid along its far face crossed that chord, never the wall (random scene
+  // 10_13). A car knocked past another, or driven on over a tree it felled, meets neither. Checked before
+  // any contact too: a car through a thin wall within one step may never have touched it.
+  // The step's obstacle boxes (updateBoxes) keep it to the walls and posts near the path.
+  const Eigen::Vector3d& to = car.bodyPose().position_m;
+  if (!mt.tunnelled && to != position_before) {
+    const Box path{position_before.cwiseMin(to), position_before.cwiseMax(to)};
+    for (ObstacleId o = 0; o < obstacle_boxes.size() && !mt.tunnelled; ++o) {
+      const ObstacleKind kind = world.obstacleKind(o);
+      if ((kind != ObstacleKind::Wall && kind != ObstacleKind::Post) || world.obstacleIsDynamic(o)) continue;
+      if (obstacle_boxes[o].overlaps(path))
+        mt.tunnelled = segmentMeets(world.obstacleShape(o), position_before, to);
+    }
+  }
+
   if (!mt.impacted) return;
   // The rebound is the separation speed: measured while the car touches what it hit and in the step it
   // leaves it, never afterwards (a car steering away from a wall it grazed is not a rebound).
@@ -109,23 +126,6 @@ void Simulation::Impl::updateMetrics(DeformableCar& dc, const Eigen::Vector3d& p
       mt.max_dynamic_crush_m =
           std::max(mt.max_dynamic_crush_m, (rest[i] - s.positions_m[i]).dot(dc.impact_direction_vehicle));
   }
-  // Tunnelling: the car's origin (inside its rigid parts) passed into or through a wall or post during
-  // this step. The step's own path, not the chord from where the car was at impact: a car that glanced
-  // off a short wall's end and slid along its far face crossed that chord, never the wall (random scene
-  // 10_13). A car knocked past another, or driven on over a tree it felled, meets neither.
-  if (!mt.tunnelled) {
-    const Eigen::Vector3d& to = car.bodyPose().position_m;
-    for (ObstacleId o = 0; o < world.obstacleCount() && !mt.tunnelled; ++o) {
-      const ObstacleKind kind = world.obstacleKind(o);
-      if ((kind != ObstacleKind::Wall && kind != ObstacleKind::Post) || world.obstacleIsDynamic(o)) continue;
-      const ObstacleShape shape = worldShapeOf({EntityRef::Kind::Obstacle, o});
-      const Eigen::Vector3d centre = interiorPoint(shape);
-      const double reach_m = boundingRadius(shape) + (to - position_before).norm();
-      if ((centre - to).squaredNorm() > reach_m * reach_m) continue;
-      mt.tunnelled = segmentMeets(shape, position_before, to);
-    }
-  }
-
   EnergyTerms& e = mt.energy;
   e.crush_work_J += dc.step_crush_work_J;
   e.other_work_J += dc.step_other_work_J;

@@ -173,7 +173,7 @@ ImpactRun runImpacts(int impacts_wanted, std::size_t min_steps) {
 
 std::vector<StressCase> repeatedImpactCases(bool quick) {
   // Under AddressSanitizer the full group is halved, 25 impacts and 50,000 steps (the case's name says so):
-  // its two runs took 83 s there, over the sanitizer suite's budget of 60 s a test (make test-asan).
+  // its two runs took 83 s there, over the 60 s a test that issue 43 asks of make test-asan.
   const int impacts_wanted = quick ? 10 : (kAddressSanitizer ? 25 : 50);
   const std::size_t min_steps = quick ? 0 : (kAddressSanitizer ? 50000 : 100000);
   const auto start = Clock::now();
